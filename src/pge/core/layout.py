@@ -1,0 +1,109 @@
+"""Column layout of the engine's arrays, shared by the compiled loop and the World.
+
+The engine keeps every body in one row of a float array ``F`` and one row of
+an int array ``I`` (array-of-structures: one body's hot fields share cache
+lines). Module-level integers are compile-time constants for Numba.
+"""
+
+# ---- F: float64 per body -------------------------------------------------
+X, Y = 0, 1  # reference position (centre or area centroid) at time T0
+VX, VY = 2, 3  # velocity at T0 (zero for a fixed body)
+T0 = 4  # the body's own reference time ("delayed state")
+AX, AY = 5, 6  # total constant acceleration (own + gravity; zero if fixed)
+INV_MASS = 7  # 1 / mass, 0 for fixed bodies
+ELASTICITY = 8
+RADIUS = 9  # circle radius (0 for polygons)
+REACH = 10  # bounding radius about the reference point
+EXT_X0, EXT_Y0, EXT_X1, EXT_Y1 = 11, 12, 13, 14  # shape's box relative to the reference point
+HORIZON = 15  # end of the time span the swept box covers
+BOX_X0, BOX_Y0, BOX_X1, BOX_Y1 = 16, 17, 18, 19  # swept box over [now, HORIZON]
+OWN_AX, OWN_AY = 20, 21  # the body's own acceleration, on top of gravity
+ANGLE, OMEGA = 22, 23
+HELD_VX, HELD_VY = 24, 25  # velocity kept while fixed, restored by unfix
+MASS = 26  # nan until given
+NF = 27
+
+# ---- I: int64 per body -------------------------------------------------------
+KIND = 0  # pge.toi.CIRCLE or POLYGON
+FIXED = 1
+COUNT = 2  # invalidation counter: events carry it and are stale once it moves on
+ALIVE = 3
+CELL = 4  # grid cell of a moving body (-1: not in the grid)
+NEXT, PREV = 5, 6  # neighbours in the cell's linked list
+OUTLINE_START, OUTLINE_N = 7, 8  # polygon rows in the outline array
+NOTIFY = 9  # collisions of this body are reported to Python
+STAMP = 10  # de-duplication stamp used while gathering candidates
+MARK = 11  # pair-once mark used while predicting a group of bodies
+NI = 12
+
+# ---- P: float64 world parameters --------------------------------------------
+TIME = 0
+GRID_X0, GRID_Y0 = 1, 2
+CELL_SIZE, INV_CELL = 3, 4
+TRAVEL = 5  # distance a moving body may travel within one horizon
+MARGIN = 6  # safety margin added to every swept box
+OVERLAP_TOLERANCE = 7
+NP = 8
+
+# ---- Q: int64 world parameters -----------------------------------------------
+GRID_NX, GRID_NY = 0, 1
+RULE = 2  # restitution rule code (see pge.response)
+STAMP_COUNTER = 3
+MARK_COUNTER = 4
+HEAP_N = 5  # entries in the heap
+FREE_N = 6  # free event slots
+MIN_FREE = 7  # the loop returns NEED_SPACE when fewer slots are free
+NQ = 8
+
+# ---- stats: int64 counters ---------------------------------------------------
+STAT_NAMES = (
+    "events",
+    "collisions",
+    "pair_collisions",
+    "horizons",
+    "timers",
+    "frames",
+    "stale",
+    "grazes",
+    "candidates",
+    "box_rejects",
+    "bound_rejects",
+    "predictions",
+    "hits",
+)
+(
+    S_EVENTS,
+    S_COLLISIONS,
+    S_PAIR_COLLISIONS,
+    S_HORIZONS,
+    S_TIMERS,
+    S_FRAMES,
+    S_STALE,
+    S_GRAZES,
+    S_CANDIDATES,
+    S_BOX_REJECTS,
+    S_BOUND_REJECTS,
+    S_PREDICTIONS,
+    S_HITS,
+) = range(13)
+NSTATS = 13
+
+# ---- event kinds (high bits of the heap key; equal times pop in this order) --
+COLLISION, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3
+KIND_SHIFT = 58
+ID_SHIFT = 29
+
+# ---- out: the record of the event that returned control to Python -----------
+OUT_TIME, OUT_A, OUT_B, OUT_PX, OUT_PY, OUT_NX, OUT_NY, OUT_IMPULSE, OUT_SPEED, OUT_ID, OUT_EPOCH = range(11)
+NOUT = 11
+
+# ---- return codes of the loop --------------------------------------------------
+DONE = 0  # the next event is after `until`
+COLLIDED = 1  # a collision Python wants to hear about
+FIRED_TIMER = 2
+FIRED_FRAME = 3
+NEED_SPACE = 4  # grow the event arrays and call again
+EMPTY = 5  # no events left
+
+# ---- outline array columns ------------------------------------------------------
+O_X, O_Y, O_NX, O_NY, O_LENGTH = 0, 1, 2, 3, 4

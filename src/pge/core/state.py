@@ -1,0 +1,177 @@
+"""The engine's arrays, their growth, and the grid's static part (Python side).
+
+``EngineState.S`` is the tuple handed to every compiled function; it is
+rebuilt whenever an array is replaced by a larger one.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pge.core import layout as L
+
+
+class EngineState:
+    """Arrays for bodies, outlines, the grid and the event queue, with room to grow."""
+
+    def __init__(self, capacity: int = 64, event_capacity: int = 1024) -> None:
+        self.n = 0  # body rows in use (removed bodies keep their rows)
+        self.F = np.zeros((capacity, L.NF))
+        self.I = np.zeros((capacity, L.NI), dtype=np.int64)
+        self.I[:, L.CELL] = -1
+        self.OL = np.zeros((64, 5))
+        self.n_outline = 0
+        self.P = np.zeros(L.NP)
+        self.Q = np.zeros(L.NQ, dtype=np.int64)
+        self.head = np.full(1, -1, dtype=np.int64)
+        self.static_start = np.zeros(2, dtype=np.int64)
+        self.static_items = np.zeros(0, dtype=np.int64)
+        self.heap = np.zeros(event_capacity, dtype=np.int64)
+        self.slot_time = np.zeros(event_capacity)
+        self.slot_key = np.zeros(event_capacity, dtype=np.int64)
+        self.slot_data = np.zeros((event_capacity, 5), dtype=np.int64)
+        self.free = np.arange(event_capacity, dtype=np.int64)[::-1].copy()
+        self.Q[L.FREE_N] = event_capacity
+        self.Q[L.GRID_NX] = self.Q[L.GRID_NY] = 1
+        self.P[L.CELL_SIZE] = self.P[L.INV_CELL] = 1.0
+        self.stats = np.zeros(L.NSTATS, dtype=np.int64)
+        self.out = np.zeros(L.NOUT)
+        self.scratch = np.zeros(capacity, dtype=np.int64)
+        self._update_min_free()
+        self.refresh()
+
+    def refresh(self) -> None:
+        """Rebuild the tuple of arrays passed to compiled code."""
+        self.S = (
+            self.F,
+            self.I,
+            self.OL,
+            self.P,
+            self.Q,
+            self.head,
+            self.static_start,
+            self.static_items,
+            self.heap,
+            self.slot_time,
+            self.slot_key,
+            self.slot_data,
+            self.free,
+            self.stats,
+            self.out,
+            self.scratch,
+        )
+
+    def _update_min_free(self) -> None:
+        # One event re-predicts at most two bodies, each pushing at most one
+        # event per other body plus its horizon.
+        self.Q[L.MIN_FREE] = 2 * self.n + 16
+
+    # ------------------------------------------------------------- growth
+
+    def new_body(self) -> int:
+        """Row index for a new body (arrays grow by doubling)."""
+        if self.n == self.F.shape[0]:
+            capacity = 2 * self.F.shape[0]
+            F = np.zeros((capacity, L.NF))
+            F[: self.n] = self.F[: self.n]
+            I = np.zeros((capacity, L.NI), dtype=np.int64)
+            I[: self.n] = self.I[: self.n]
+            I[self.n :, L.CELL] = -1
+            self.F, self.I = F, I
+            self.scratch = np.zeros(capacity, dtype=np.int64)
+        index = self.n
+        self.n += 1
+        self._update_min_free()
+        self.ensure_events(0)
+        self.refresh()
+        return index
+
+    def add_outline(self, rows: np.ndarray) -> int:
+        """Store polygon outline rows; returns the first row's index."""
+        needed = self.n_outline + rows.shape[0]
+        if needed > self.OL.shape[0]:
+            capacity = max(needed, 2 * self.OL.shape[0])
+            OL = np.zeros((capacity, 5))
+            OL[: self.n_outline] = self.OL[: self.n_outline]
+            self.OL = OL
+        start = self.n_outline
+        self.OL[start:needed] = rows
+        self.n_outline = needed
+        self.refresh()
+        return start
+
+    def ensure_events(self, extra: int) -> None:
+        """Make sure at least ``MIN_FREE + extra`` event slots are free."""
+        want = int(self.Q[L.MIN_FREE]) + extra
+        free_now = int(self.Q[L.FREE_N])
+        if free_now >= want:
+            return
+        old = self.heap.shape[0]
+        capacity = max(2 * old, old + want - free_now)
+        grown = capacity - old
+        heap = np.zeros(capacity, dtype=np.int64)
+        heap[:old] = self.heap
+        slot_time = np.zeros(capacity)
+        slot_time[:old] = self.slot_time
+        slot_key = np.zeros(capacity, dtype=np.int64)
+        slot_key[:old] = self.slot_key
+        slot_data = np.zeros((capacity, 5), dtype=np.int64)
+        slot_data[:old] = self.slot_data
+        free = np.zeros(capacity, dtype=np.int64)
+        free[:free_now] = self.free[:free_now]
+        free[free_now : free_now + grown] = np.arange(capacity - 1, old - 1, -1)
+        self.heap, self.slot_time, self.slot_key, self.slot_data, self.free = heap, slot_time, slot_key, slot_data, free
+        self.Q[L.FREE_N] = free_now + grown
+        self.refresh()
+
+    # -------------------------------------------------------------- the grid
+
+    def set_grid(self, x0: float, y0: float, x1: float, y1: float, cell: float) -> None:
+        """Lay a fresh grid of square cells over the rectangle (bodies must be re-placed)."""
+        nx = max(1, math.ceil((x1 - x0) / cell))
+        ny = max(1, math.ceil((y1 - y0) / cell))
+        self.P[L.GRID_X0] = x0
+        self.P[L.GRID_Y0] = y0
+        self.P[L.CELL_SIZE] = cell
+        self.P[L.INV_CELL] = 1.0 / cell
+        self.Q[L.GRID_NX] = nx
+        self.Q[L.GRID_NY] = ny
+        self.head = np.full(nx * ny, -1, dtype=np.int64)
+        self.I[: self.n, L.CELL] = -1
+        self.I[: self.n, L.NEXT] = -1
+        self.I[: self.n, L.PREV] = -1
+        self.static_start = np.zeros(nx * ny + 1, dtype=np.int64)
+        self.static_items = np.zeros(0, dtype=np.int64)
+        self.refresh()
+
+    def _cell(self, value: float, origin: float, count: int) -> int:
+        f = (value - origin) * self.P[L.INV_CELL]
+        if f <= 0.0:
+            return 0
+        if f >= count - 1:
+            return count - 1
+        return int(f)
+
+    def rebuild_static(self) -> None:
+        """Register every live fixed body's box in all the cells it covers."""
+        nx = int(self.Q[L.GRID_NX])
+        ny = int(self.Q[L.GRID_NY])
+        x0 = self.P[L.GRID_X0]
+        y0 = self.P[L.GRID_Y0]
+        cells: list[list[int]] = [[] for _ in range(nx * ny)]
+        F, I = self.F, self.I
+        for i in np.flatnonzero((I[: self.n, L.FIXED] != 0) & (I[: self.n, L.ALIVE] != 0)):
+            ix0 = self._cell(F[i, L.BOX_X0], x0, nx)
+            ix1 = self._cell(F[i, L.BOX_X1], x0, nx)
+            iy0 = self._cell(F[i, L.BOX_Y0], y0, ny)
+            iy1 = self._cell(F[i, L.BOX_Y1], y0, ny)
+            for ix in range(ix0, ix1 + 1):
+                for iy in range(iy0, iy1 + 1):
+                    cells[ix * ny + iy].append(int(i))
+        counts = np.array([len(c) for c in cells], dtype=np.int64)
+        self.static_start = np.zeros(nx * ny + 1, dtype=np.int64)
+        np.cumsum(counts, out=self.static_start[1:])
+        self.static_items = np.array([i for c in cells for i in c], dtype=np.int64)
+        self.refresh()

@@ -1,0 +1,81 @@
+"""Event records handed to callbacks and iterators, and the queue's ordering rule.
+
+The queue is a binary heap (``heapq``) of tuples
+``(time, kind, key1, key2, seq, payload)``. Equal times are broken by kind in
+the order COLLISION, HORIZON, TIMER, FRAME, STOP (so a frame or a stop at time
+t shows the world after everything else that happens at t), then by the two
+body ids of a collision (smaller first), then by insertion order ``seq``.
+Stale entries are not removed: each carries the invalidation counters of its
+bodies and is skipped when popped if a counter has moved on ("lazy
+invalidation").
+"""
+
+from __future__ import annotations
+
+from typing import Any, NamedTuple
+
+__all__ = [
+    "COLLISION",
+    "HORIZON",
+    "TIMER",
+    "FRAME",
+    "STOP",
+    "Collision",
+    "Timer",
+    "Frame",
+    "Stop",
+]
+
+COLLISION = 0
+HORIZON = 1
+TIMER = 2
+FRAME = 3
+STOP = 4
+
+
+class Collision(NamedTuple):
+    """Two bodies touched at ``time`` and bounced.
+
+    ``point`` is the contact point and ``normal`` the unit contact normal,
+    pointing from ``b`` towards ``a``, both in world coordinates at ``time``;
+    ``impulse`` is the magnitude of the impulse exchanged along the normal
+    (mass x velocity units) and ``approach_speed`` the normal speed at which
+    the bodies closed (positive).
+    """
+
+    time: float
+    a: Any
+    b: Any
+    point: tuple[float, float]
+    normal: tuple[float, float]
+    impulse: float
+    approach_speed: float
+
+    kind = "collision"
+
+
+class Timer(NamedTuple):
+    """A timer registered with ``World.at_time`` fired at ``time``."""
+
+    time: float
+    timer_id: int
+    data: Any = None
+
+    kind = "timer"
+
+
+class Frame(NamedTuple):
+    """Periodic sample number ``index`` at ``time = index / frame_rate``."""
+
+    time: float
+    index: int
+
+    kind = "frame"
+
+
+class Stop(NamedTuple):
+    """The end of a run at ``time``."""
+
+    time: float
+
+    kind = "stop"

@@ -1,0 +1,805 @@
+"""The World: the public, Pythonic front door to the engine.
+
+A World holds bodies (circles and convex polygons), callbacks and timers, and
+drives the compiled event loop of ``pge.core.engine``. Everything the loop
+needs lives in ``pge.core.state.EngineState`` arrays; this module validates
+input at the boundary (errors name the object and the problem and leave the
+world unchanged), turns compiled event records into ``pge.events`` records
+and calls user callbacks.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Callable, Iterator
+
+import numpy as np
+
+from pge.bodies import Body
+from pge.core import engine
+from pge.core import layout as L
+from pge.core.state import EngineState
+from pge.events import Collision, Frame, Stop, Timer
+from pge.geometry import check_number, check_vector, rotate_points
+from pge.response import RESTITUTION_RULES, restitution_rule
+from pge.shapes import Circle, Polygon
+from pge.toi import CIRCLE, POLYGON, outline_rows
+
+__all__ = ["World"]
+
+_INF = math.inf
+
+#: overlap allowed between bodies when a run starts, relative to their bounding radii.
+OVERLAP_TOLERANCE = 1e-9
+
+_RULE_CODES = {name: code for code, name in enumerate(("min", "max", "mean", "geometric"))}
+_OPTIONS = frozenset(
+    ["mass", "velocity", "acceleration", "fixed", "elasticity", "angle", "angular_velocity", "name", "data"]
+)
+
+
+class World:
+    """A 2D world of circles and convex polygons moving under constant accelerations.
+
+    Every contact is predicted at its exact time; nothing is stepped.
+
+    Parameters:
+
+    * ``gravity``: acceleration ``(gx, gy)`` of every moving body, in world
+      units per second squared; default none. PGE's ``pge.gravity()`` is
+      ``(0, -9.81)`` in a unit-square world with y up.
+    * ``elasticity``: default elasticity of new bodies, 0.98 as in PGE.
+    * ``restitution``: how two bodies' elasticities combine, one of
+      ``"min"`` (default: the less elastic body decides), ``"max"``,
+      ``"mean"``, ``"geometric"``. Each gives exactly ``e`` for two bodies of
+      elasticity ``e``.
+    * ``bounds``: ``(x0, y0, x1, y1)``, the region covered by the broad-phase
+      grid; bodies may leave it (they are then found less efficiently).
+      Default: the unit square.
+    * ``frame_rate``: FRAME events per second, or None (default) for none.
+    * ``cell_size``, ``skin``: broad-phase tuning (grid cell side; distance a
+      body may travel before its swept box is renewed). Derived from the
+      typical body size when the world first runs, unless given.
+
+    Time starts at 0. ``run_until(t)`` processes every event up to ``t``;
+    ``events(until)`` yields them one by one; ``time`` is the current time,
+    at which positions and velocities are read.
+    """
+
+    def __init__(
+        self,
+        gravity=(0.0, 0.0),
+        elasticity: float = 0.98,
+        restitution: str = "min",
+        bounds=(0.0, 0.0, 1.0, 1.0),
+        frame_rate: float | None = None,
+        cell_size: float | None = None,
+        skin: float | None = None,
+    ) -> None:
+        self._gravity = check_vector("World", "gravity", gravity)
+        self._default_elasticity = _check_elasticity("World", elasticity)
+        restitution_rule(restitution)
+        self._restitution = restitution
+        try:
+            x0, y0, x1, y1 = (check_number("World", "bounds", v) for v in bounds)
+        except (TypeError, ValueError) as error:
+            raise type(error)(f"World: bounds must be (x0, y0, x1, y1): {error}") from None
+        if not (x1 > x0 and y1 > y0):
+            raise ValueError(f"World: bounds must satisfy x0 < x1 and y0 < y1, got {bounds!r}")
+        self._bounds = (x0, y0, x1, y1)
+        self._cell_option = None if cell_size is None else _positive("World", "cell_size", cell_size)
+        self._skin_option = None if skin is None else _positive("World", "skin", skin)
+        self._state = EngineState()
+        self._state.Q[L.RULE] = _RULE_CODES[restitution]
+        self._state.P[L.OVERLAP_TOLERANCE] = OVERLAP_TOLERANCE
+        self._handles: dict[int, Body] = {}
+        self._primed = False
+        self._unchecked: set[int] = set()
+        self._collision_callbacks: list[Callable] = []
+        self._body_callbacks: dict[int, list[Callable]] = {}
+        self._frame_callbacks: list[Callable] = []
+        self._timers: dict[int, tuple] = {}
+        self._next_timer = 1
+        self._frame_rate: float | None = None
+        self._frame_epoch = 0
+        self._frame_base = 0.0
+        self._stop_requested = False
+        if frame_rate is not None:
+            self.frame_rate = frame_rate
+
+    # ------------------------------------------------------------ world settings
+
+    @property
+    def time(self) -> float:
+        """The current simulation time in seconds."""
+        return float(self._state.P[L.TIME])
+
+    @property
+    def gravity(self) -> tuple[float, float]:
+        """World gravity ``(gx, gy)``; assigning it calls ``set_gravity``."""
+        return self._gravity
+
+    @gravity.setter
+    def gravity(self, value) -> None:
+        self.set_gravity(value)
+
+    def set_gravity(self, value) -> None:
+        """Change the world's gravity now; every moving body is advanced and predicted again."""
+        gravity = check_vector("World", "gravity", value)
+        self._gravity = gravity
+        moving = [i for i in self._handles if not self._state.I[i, L.FIXED]]
+        for i in moving:
+            engine.advance(self._state.F, i, self.time)
+            self._update_acceleration(i)
+        self._changed(moving)
+
+    @property
+    def frame_rate(self) -> float | None:
+        """FRAME events per second, or None for none. Frames fall at ``start + k / rate``."""
+        return self._frame_rate
+
+    @frame_rate.setter
+    def frame_rate(self, value) -> None:
+        if value is not None:
+            value = _positive("World", "frame_rate", value)
+        self._frame_rate = value
+        self._frame_epoch += 1  # frames queued at the old rate are dropped when they pop
+        self._frame_base = self.time
+        if value:
+            self._push_frame(1)
+
+    @property
+    def restitution(self) -> str:
+        """Name of the rule combining two bodies' elasticities (see ``pge.response``)."""
+        return self._restitution
+
+    @property
+    def bodies(self) -> tuple[Body, ...]:
+        """The bodies in the world, in order of creation."""
+        return tuple(self._handles.values())
+
+    def __len__(self) -> int:
+        return len(self._handles)
+
+    @property
+    def stats(self) -> dict[str, int]:
+        """Counters since the world was made: events (valid events processed, of every
+        kind), collisions, pair_collisions (both bodies moving), horizons (swept-box
+        renewals), timers, frames, stale (invalidated queue entries skipped), grazes,
+        candidates (pairs gathered from the grid), box_rejects, bound_rejects
+        (short-circuit test), predictions (exact time-of-impact solves), hits."""
+        return {name: int(value) for name, value in zip(L.STAT_NAMES, self._state.stats)}
+
+    @property
+    def predictions_avoided(self) -> int:
+        """Exact predictions the broad phase made unnecessary: candidate pairs rejected
+        by the swept-box overlap or by the short-circuit bound."""
+        stats = self._state.stats
+        return int(stats[L.S_BOX_REJECTS] + stats[L.S_BOUND_REJECTS])
+
+    # ------------------------------------------------------------------ bodies
+
+    def add_circle(self, position, radius, **options) -> Body:
+        """Add a circle centred at ``position`` with ``radius``; returns its Body.
+
+        Options (keywords): ``mass`` (required before the world runs unless
+        ``fixed``), ``velocity``, ``acceleration`` (own, on top of gravity),
+        ``fixed`` (default False), ``elasticity`` (default the world's),
+        ``angle``, ``angular_velocity``, ``name``, ``data`` (any user value).
+        Bad values raise ValueError or TypeError naming the problem and leave
+        the world unchanged.
+        """
+        owner = _owner("circle", options)
+        shape = Circle(radius, owner)
+        centre = check_vector(owner, "position", position)
+        return self._add(shape, centre, owner, options)
+
+    def add_polygon(self, vertices, **options) -> Body:
+        """Add a convex polygon through ``vertices`` (world coordinates, either winding).
+
+        The body's position is the polygon's area centroid. Options as for
+        ``add_circle``. Non-convex, self-intersecting or degenerate outlines
+        and non-finite values raise a ValueError naming the problem.
+        """
+        owner = _owner("polygon", options)
+        shape, centroid = Polygon.from_points(vertices, owner)
+        return self._add(shape, centroid, owner, options)
+
+    def add_box(self, x, y, width, height, **options) -> Body:
+        """Add an axis-aligned rectangle with lower-left corner ``(x, y)``."""
+        owner = _owner("box", options)
+        x = check_number(owner, "x", x)
+        y = check_number(owner, "y", y)
+        width = check_number(owner, "width", width)
+        height = check_number(owner, "height", height)
+        if width <= 0.0 or height <= 0.0:
+            raise ValueError(f"{owner}: width and height must be positive, got {width!r} x {height!r}")
+        corners = [(x, y), (x + width, y), (x + width, y + height), (x, y + height)]
+        return self.add_polygon(corners, **options)
+
+    def _add(self, shape, position, owner: str, options: dict) -> Body:
+        unknown = set(options) - _OPTIONS
+        if unknown:
+            raise TypeError(f"{owner}: unknown option(s) {sorted(unknown)}")
+        fixed = bool(options.get("fixed", False))
+        mass = options.get("mass")
+        if mass is not None:
+            mass = _positive(owner, "mass", mass)
+        velocity = check_vector(owner, "velocity", options.get("velocity", (0.0, 0.0)))
+        accel = check_vector(owner, "acceleration", options.get("acceleration", (0.0, 0.0)))
+        elasticity = options.get("elasticity")
+        elasticity = self._default_elasticity if elasticity is None else _check_elasticity(owner, elasticity)
+        angle = check_number(owner, "angle", options.get("angle", 0.0))
+        omega = check_number(owner, "angular_velocity", options.get("angular_velocity", 0.0))
+
+        state = self._state
+        i = state.new_body()
+        F, I = state.F, state.I
+        F[i] = 0.0
+        I[i] = 0
+        I[i, L.CELL] = I[i, L.NEXT] = I[i, L.PREV] = -1
+        F[i, L.X], F[i, L.Y] = position
+        F[i, L.T0] = self.time
+        if fixed:
+            F[i, L.HELD_VX], F[i, L.HELD_VY] = velocity
+        else:
+            F[i, L.VX], F[i, L.VY] = velocity
+        F[i, L.OWN_AX], F[i, L.OWN_AY] = accel
+        F[i, L.MASS] = math.nan if mass is None else mass
+        F[i, L.ELASTICITY] = elasticity
+        F[i, L.OMEGA] = omega
+        F[i, L.REACH] = shape.bounding_radius
+        I[i, L.FIXED] = int(fixed)
+        I[i, L.ALIVE] = 1
+        if isinstance(shape, Circle):
+            I[i, L.KIND] = CIRCLE
+            F[i, L.RADIUS] = shape.radius
+        else:
+            I[i, L.KIND] = POLYGON
+        self._set_inverse_mass(i)
+        self._orient(i, shape, angle)
+        self._update_acceleration(i)
+        body = Body(self, i, shape, options.get("name"), options.get("data"))
+        self._handles[i] = body
+        if self._primed:
+            try:
+                self._fit_grid(i)
+                self._place([i])
+                self._check([i])
+            except ValueError:
+                self._forget(i)
+                raise
+            self._predict([i])
+        else:
+            self._unchecked.add(i)
+        return body
+
+    def _orient(self, i: int, shape, angle: float) -> None:
+        state = self._state
+        F, I = state.F, state.I
+        F[i, L.ANGLE] = angle
+        if isinstance(shape, Circle):
+            r = shape.radius
+            F[i, L.EXT_X0], F[i, L.EXT_Y0], F[i, L.EXT_X1], F[i, L.EXT_Y1] = -r, -r, r, r
+            return
+        vertices = rotate_points(shape.vertices, angle)
+        rows = outline_rows(vertices)
+        I[i, L.OUTLINE_START] = state.add_outline(rows)
+        I[i, L.OUTLINE_N] = rows.shape[0]
+        F = state.F
+        F[i, L.EXT_X0], F[i, L.EXT_Y0] = rows[:, 0].min(), rows[:, 1].min()
+        F[i, L.EXT_X1], F[i, L.EXT_Y1] = rows[:, 0].max(), rows[:, 1].max()
+
+    def remove(self, body: Body) -> None:
+        """Take a body out of the world now; its handle becomes invalid.
+
+        Safe inside callbacks; pending events that involve it are dropped.
+        """
+        body = self._own(body)
+        i = body.id
+        engine.advance(self._state.F, i, self.time)
+        self._forget(i)
+
+    def _forget(self, i: int) -> None:
+        state = self._state
+        was_fixed = bool(state.I[i, L.FIXED])
+        state.I[i, L.COUNT] += 1
+        state.I[i, L.ALIVE] = 0
+        engine.unlink(state.S, i)
+        body = self._handles.pop(i)
+        body.world = None
+        self._body_callbacks.pop(i, None)
+        self._unchecked.discard(i)
+        state.I[i, L.NOTIFY] = 0
+        if was_fixed and self._primed:
+            state.rebuild_static()
+
+    # ------------------------------------------------------------ state setters
+
+    def _own(self, body) -> Body:
+        if not isinstance(body, Body):
+            raise TypeError(f"expected a Body, got {type(body).__name__} {body!r}")
+        if body.world is not self:
+            if body.world is None:
+                raise ValueError(f"{body.label()} has been removed from its world")
+            raise ValueError(f"{body.label()} belongs to another world")
+        return body
+
+    def _update_acceleration(self, i: int) -> None:
+        F = self._state.F
+        if self._state.I[i, L.FIXED]:
+            F[i, L.AX] = F[i, L.AY] = 0.0
+        else:
+            F[i, L.AX] = F[i, L.OWN_AX] + self._gravity[0]
+            F[i, L.AY] = F[i, L.OWN_AY] + self._gravity[1]
+
+    def _set_inverse_mass(self, i: int) -> None:
+        F = self._state.F
+        mass = F[i, L.MASS]
+        fixed = self._state.I[i, L.FIXED]
+        F[i, L.INV_MASS] = 0.0 if fixed or math.isnan(mass) else 1.0 / mass
+
+    def _changed(self, ids) -> None:
+        """Bodies whose motion changed now: invalidate, place and predict them again."""
+        if self._primed and ids:
+            self._place(ids)
+            self._predict(ids)
+
+    def set_position(self, body: Body, position) -> None:
+        """Move a body to ``position`` now, keeping its velocity.
+
+        Raises ValueError (world unchanged) if it would overlap another body
+        once the world has started running; before that, overlaps are reported
+        by the first run.
+        """
+        body = self._own(body)
+        x, y = check_vector(body.label(), "position", position)
+        i = body.id
+        F = self._state.F
+        engine.advance(F, i, self.time)
+        old = (F[i, L.X], F[i, L.Y])
+        F[i, L.X], F[i, L.Y] = x, y
+        self._after_geometry_change(i, lambda: _restore_xy(F, i, old))
+
+    def set_angle(self, body: Body, angle) -> None:
+        """Turn a body to ``angle`` radians about its centroid now (same rules as
+        ``set_position``)."""
+        body = self._own(body)
+        angle = check_number(body.label(), "angle", angle)
+        i = body.id
+        old = float(self._state.F[i, L.ANGLE])
+        engine.advance(self._state.F, i, self.time)
+        self._orient(i, body.shape, angle)
+        self._after_geometry_change(i, lambda: self._orient(i, body.shape, old))
+
+    def _after_geometry_change(self, i: int, undo: Callable) -> None:
+        if not self._primed:
+            self._unchecked.add(i)
+            return
+        try:
+            self._place([i])
+            self._check([i])
+        except ValueError:
+            undo()
+            self._place([i])
+            if self._state.I[i, L.FIXED]:
+                self._state.rebuild_static()
+            raise
+        self._predict([i])
+
+    def set_velocity(self, body: Body, velocity) -> None:
+        """Give a body a new velocity now. A fixed body keeps it until it is released."""
+        body = self._own(body)
+        vx, vy = check_vector(body.label(), "velocity", velocity)
+        i = body.id
+        F = self._state.F
+        if self._state.I[i, L.FIXED]:
+            F[i, L.HELD_VX], F[i, L.HELD_VY] = vx, vy
+            return
+        engine.advance(F, i, self.time)
+        F[i, L.VX], F[i, L.VY] = vx, vy
+        self._changed([i])
+
+    def apply_impulse(self, body: Body, impulse) -> None:
+        """Change a moving body's velocity by ``impulse / mass`` now.
+
+        Raises ValueError for a fixed body or one without a mass.
+        """
+        body = self._own(body)
+        jx, jy = check_vector(body.label(), "impulse", impulse)
+        i = body.id
+        F = self._state.F
+        if self._state.I[i, L.FIXED]:
+            raise ValueError(f"{body.label()} is fixed and cannot take an impulse")
+        if math.isnan(F[i, L.MASS]):
+            raise ValueError(f"{body.label()} has no mass; give it one before applying an impulse")
+        engine.advance(F, i, self.time)
+        F[i, L.VX] += jx * F[i, L.INV_MASS]
+        F[i, L.VY] += jy * F[i, L.INV_MASS]
+        self._changed([i])
+
+    def set_acceleration(self, body: Body, acceleration) -> None:
+        """Set a body's own constant acceleration (added to gravity) from now on."""
+        body = self._own(body)
+        ax, ay = check_vector(body.label(), "acceleration", acceleration)
+        i = body.id
+        F = self._state.F
+        engine.advance(F, i, self.time)
+        F[i, L.OWN_AX], F[i, L.OWN_AY] = ax, ay
+        self._update_acceleration(i)
+        if not self._state.I[i, L.FIXED]:
+            self._changed([i])
+
+    def set_mass(self, body: Body, mass) -> None:
+        """Set a body's mass (positive and finite)."""
+        body = self._own(body)
+        mass = _positive(body.label(), "mass", mass)
+        self._state.F[body.id, L.MASS] = mass
+        self._set_inverse_mass(body.id)
+
+    def set_elasticity(self, body: Body, elasticity) -> None:
+        """Set a body's elasticity, between 0 and 1."""
+        body = self._own(body)
+        self._state.F[body.id, L.ELASTICITY] = _check_elasticity(body.label(), elasticity)
+
+    def set_angular_velocity(self, body: Body, omega) -> None:
+        """Store a body's angular velocity in radians per second."""
+        body = self._own(body)
+        self._state.F[body.id, L.OMEGA] = check_number(body.label(), "angular_velocity", omega)
+
+    def set_fixed(self, body: Body, fixed: bool = True) -> None:
+        """Fix a body (immovable, infinitely heavy) or release it: it then moves on with the
+        velocity it had when fixed (or was given since) and needs a mass before the next run."""
+        body = self._own(body)
+        i = body.id
+        state = self._state
+        F, I = state.F, state.I
+        fixed = bool(fixed)
+        if fixed == bool(I[i, L.FIXED]):
+            return
+        engine.advance(F, i, self.time)
+        if fixed:
+            F[i, L.HELD_VX], F[i, L.HELD_VY] = F[i, L.VX], F[i, L.VY]
+            F[i, L.VX] = F[i, L.VY] = 0.0
+            engine.unlink(state.S, i)
+        else:
+            F[i, L.VX], F[i, L.VY] = F[i, L.HELD_VX], F[i, L.HELD_VY]
+            self._unchecked.add(i)
+        I[i, L.FIXED] = int(fixed)
+        self._set_inverse_mass(i)
+        self._update_acceleration(i)
+        if self._primed:
+            if not fixed:
+                self._fit_grid(i)
+            self._place([i])
+            if fixed:
+                state.rebuild_static()
+            self._predict([i])
+
+    # --------------------------------------------------------------- callbacks
+
+    def on_collision(self, callback: Callable, body: Body | None = None) -> Callable:
+        """Call ``callback(event)`` after every collision, or every one involving ``body``.
+
+        ``event`` is a ``pge.events.Collision``. Callbacks run after the bounce
+        in registration order (world-wide ones first); changes they make apply
+        at once, at the event's time. Returns the callback, so it can decorate.
+        """
+        if not callable(callback):
+            raise TypeError(f"on_collision: callback must be callable, got {callback!r}")
+        if body is None:
+            self._collision_callbacks.append(callback)
+        else:
+            i = self._own(body).id
+            self._body_callbacks.setdefault(i, []).append(callback)
+            self._state.I[i, L.NOTIFY] = 1
+        return callback
+
+    def on_frame(self, callback: Callable) -> Callable:
+        """Call ``callback(frame)`` at every FRAME event (see ``frame_rate``)."""
+        if not callable(callback):
+            raise TypeError(f"on_frame: callback must be callable, got {callback!r}")
+        self._frame_callbacks.append(callback)
+        return callback
+
+    def at_time(self, time, callback: Callable, data=None) -> int:
+        """Call ``callback(timer_event)`` at simulation time ``time``; returns a timer id.
+
+        ``time`` may not be in the past. Cancel with ``cancel_timer``.
+        """
+        when = check_number("at_time", "time", time)
+        if when < self.time:
+            raise ValueError(f"at_time: time {when!r} is in the past (now {self.time!r})")
+        if not callable(callback):
+            raise TypeError(f"at_time: callback must be callable, got {callback!r}")
+        timer_id = self._next_timer
+        self._next_timer += 1
+        self._timers[timer_id] = (callback, data)
+        self._state.ensure_events(1)
+        engine.push(self._state.S, when, (L.TIMER << L.KIND_SHIFT) | timer_id, timer_id, 0, 0, 0, 0)
+        return timer_id
+
+    def cancel_timer(self, timer_id: int) -> bool:
+        """Cancel a pending timer; True if it was still pending."""
+        return self._timers.pop(timer_id, None) is not None
+
+    def stop(self) -> None:
+        """Make the running ``run_until`` or ``events`` return after the current event."""
+        self._stop_requested = True
+
+    # ----------------------------------------------------------------- running
+
+    def run_until(self, time) -> None:
+        """Process every event up to and including ``time``, then set ``time``.
+
+        Raises ValueError, before anything happens, if a moving body has no
+        mass or two bodies overlap.
+        """
+        until = check_number("run_until", "time", time)
+        if until < self.time:
+            raise ValueError(f"run_until: time {until!r} is before the current time {self.time!r}")
+        for _ in self._loop(until, False):
+            pass
+
+    def run(self, duration) -> None:
+        """Run for ``duration`` more seconds of simulated time."""
+        duration = check_number("run", "duration", duration)
+        if duration < 0.0:
+            raise ValueError(f"run: duration must not be negative, got {duration!r}")
+        self.run_until(self.time + duration)
+
+    def events(self, until=_INF) -> Iterator:
+        """Process events up to ``until``, yielding each one as it happens.
+
+        Yields ``Collision``, ``Timer`` and ``Frame`` records, then a ``Stop``
+        at ``until`` (none if ``until`` is infinite and the queue runs dry).
+        """
+        until = float(until)
+        if math.isnan(until) or until < self.time:
+            raise ValueError(f"events: until must be a time not before now, got {until!r}")
+        return self._loop(until, True)
+
+    def _loop(self, until: float, emit: bool):
+        self._prepare()
+        state = self._state
+        out = state.out
+        self._stop_requested = False
+        while True:
+            notify_all = emit or bool(self._collision_callbacks)
+            code = engine.run(state.S, until, notify_all)
+            if code == L.DONE or code == L.EMPTY:
+                if until != _INF:
+                    state.P[L.TIME] = until
+                    if emit:
+                        yield Stop(until)
+                return
+            if code == L.NEED_SPACE:
+                state.ensure_events(0)
+                continue
+            record = None
+            if code == L.COLLIDED:
+                a = self._handles.get(int(out[L.OUT_A]))
+                b = self._handles.get(int(out[L.OUT_B]))
+                record = Collision(
+                    float(out[L.OUT_TIME]),
+                    a,
+                    b,
+                    (float(out[L.OUT_PX]), float(out[L.OUT_PY])),
+                    (float(out[L.OUT_NX]), float(out[L.OUT_NY])),
+                    float(out[L.OUT_IMPULSE]),
+                    float(out[L.OUT_SPEED]),
+                )
+                self._notify(record)
+            elif code == L.FIRED_TIMER:
+                timer_id = int(out[L.OUT_ID])
+                timer = self._timers.pop(timer_id, None)
+                if timer is None:
+                    continue  # cancelled
+                record = Timer(float(out[L.OUT_TIME]), timer_id, timer[1])
+                timer[0](record)
+            elif code == L.FIRED_FRAME:
+                if int(out[L.OUT_EPOCH]) != self._frame_epoch:
+                    continue  # queued before the frame rate changed
+                index = int(out[L.OUT_ID])
+                record = Frame(float(out[L.OUT_TIME]), index)
+                state.stats[L.S_EVENTS] += 1
+                state.stats[L.S_FRAMES] += 1
+                self._push_frame(index + 1)
+                for callback in tuple(self._frame_callbacks):
+                    callback(record)
+            if emit and record is not None:
+                yield record
+            if self._stop_requested:
+                self._stop_requested = False
+                return
+
+    def _notify(self, record: Collision) -> None:
+        for callback in tuple(self._collision_callbacks):
+            callback(record)
+        for body in (record.a, record.b):
+            if body is not None:
+                for callback in tuple(self._body_callbacks.get(body.id, ())):
+                    callback(record)
+
+    def _push_frame(self, index: int) -> None:
+        when = self._frame_base + index / self._frame_rate
+        self._state.ensure_events(1)
+        engine.push(
+            self._state.S, when, (L.FRAME << L.KIND_SHIFT) | index, index, self._frame_epoch, 0, 0, 0
+        )
+
+    # ------------------------------------------------------------ broad phase
+
+    def _prepare(self) -> None:
+        """Before a run: build the grid on the first, check new bodies on every run."""
+        if not self._primed:
+            self._prime()
+        elif self._unchecked:
+            self._check(sorted(self._unchecked))
+            self._unchecked.clear()
+
+    def _prime(self) -> None:
+        state = self._state
+        ids = sorted(self._handles)
+        I, F = state.I, state.F
+        moving = [i for i in ids if not I[i, L.FIXED]]
+        reaches = sorted(F[i, L.REACH] for i in moving) or [0.05]
+        typical = reaches[len(reaches) // 2]
+        self._travel = self._skin_option or 2.0 * typical
+        state.P[L.TRAVEL] = self._travel
+        x0, y0, x1, y1 = self._bounds
+        cell = self._cell_option or 4.0 * typical
+        cell = max(cell, math.sqrt((x1 - x0) * (y1 - y0) / (4.0 * len(ids) + 1024.0)))
+        cell = max([cell] + [self._box_span(i) for i in moving])
+        self._lay_grid(cell)
+        for i in ids:
+            engine.advance(F, i, self.time)
+        self._place(ids)
+        try:
+            self._check(ids)
+        except ValueError:
+            state.set_grid(x0, y0, x1, y1, cell)  # drop what was filed
+            raise
+        self._primed = True
+        self._unchecked.clear()
+        self._predict(ids)
+
+    def _box_span(self, i: int) -> float:
+        """Widest swept box body ``i`` can have: shape extent plus travel, with margin."""
+        F = self._state.F
+        extent = max(F[i, L.EXT_X1] - F[i, L.EXT_X0], F[i, L.EXT_Y1] - F[i, L.EXT_Y0])
+        return (extent + self._travel) * (1.0 + 1e-6) + 4.0 * self._state.P[L.MARGIN]
+
+    def _lay_grid(self, cell: float) -> None:
+        state = self._state
+        state.P[L.MARGIN] = 1e-9 * cell
+        state.set_grid(*self._bounds, cell)
+
+    def _fit_grid(self, i: int) -> None:
+        """Grow the grid's cells if a new moving body's box would not fit in one."""
+        state = self._state
+        if state.I[i, L.FIXED]:
+            return
+        span = self._box_span(i)
+        if span <= state.P[L.CELL_SIZE]:
+            return
+        self._lay_grid(2.0 * span)
+        ids = [j for j in sorted(self._handles) if j != i]
+        self._place(ids)
+        self._predict(ids)
+
+    def _place(self, ids) -> None:
+        """Invalidate and give new swept boxes to ``ids`` (motion or shape changed now)."""
+        state = self._state
+        array = np.asarray(ids, dtype=np.int64)
+        done = 0
+        while done < array.shape[0]:
+            state.ensure_events(0)
+            done = engine.place_group(state.S, array, done)
+        if state.I[array, L.FIXED].any():
+            state.rebuild_static()
+
+    def _predict(self, ids) -> None:
+        state = self._state
+        array = np.asarray(ids, dtype=np.int64)
+        mark = engine.new_mark(state.S)
+        done = 0
+        while done < array.shape[0]:
+            state.ensure_events(0)
+            done = engine.predict_group(state.S, array, done, mark)
+
+    # ------------------------------------------------------------- validation
+
+    def _check(self, ids) -> None:
+        """Raise ValueError if a moving body of ``ids`` lacks a mass or overlaps a body."""
+        state = self._state
+        for i in ids:
+            if not state.I[i, L.FIXED] and math.isnan(state.F[i, L.MASS]):
+                raise ValueError(f"{self._handles[i].label()} is moving but has no mass; give it a mass or fix it")
+        i, j, depth = engine.find_overlap(state.S, np.asarray(ids, dtype=np.int64), OVERLAP_TOLERANCE)
+        if i >= 0:
+            raise ValueError(
+                f"{self._handles[i].label()} overlaps {self._handles[j].label()} by {depth:.3g} "
+                f"at time {self.time!r}; bodies must not overlap when the world runs"
+            )
+
+    def overlap_depth(self, a: Body, b: Body) -> float:
+        """How deeply two bodies overlap now (positive) or how far apart they are (negative;
+        for two polygons a lower bound on the distance)."""
+        a, b = self._own(a), self._own(b)
+        return float(engine.overlap_depth(self._state.S, a.id, b.id))
+
+    def overlaps(self, tolerance: float = 0.0) -> list[tuple[Body, Body, float]]:
+        """Pairs of bodies (not both fixed) overlapping by more than ``tolerance`` now.
+
+        A sweep over the bodies' current bounding boxes along x: O(N log N + pairs).
+        """
+        state = self._state
+        F = state.F
+        spans = []
+        for i in self._handles:
+            x, y = self._handles[i].position
+            spans.append((x + F[i, L.EXT_X0], x + F[i, L.EXT_X1], y + F[i, L.EXT_Y0], y + F[i, L.EXT_Y1], i))
+        spans.sort()
+        found = []
+        active: list = []
+        for span in spans:
+            active = [s for s in active if s[1] >= span[0]]
+            for other in active:
+                i, j = other[4], span[4]
+                if state.I[i, L.FIXED] and state.I[j, L.FIXED]:
+                    continue
+                if other[2] > span[3] or other[3] < span[2]:
+                    continue
+                depth = float(engine.overlap_depth(state.S, i, j))
+                if depth > tolerance:
+                    found.append((self._handles[i], self._handles[j], depth))
+            active.append(span)
+        return found
+
+    def kinetic_energy(self) -> float:
+        """Total translational kinetic energy of the moving bodies now."""
+        total = 0.0
+        for body in self._handles.values():
+            mass = body.mass
+            if mass is not None and not body.is_fixed:
+                vx, vy = body.velocity
+                total += 0.5 * mass * (vx * vx + vy * vy)
+        return total
+
+    def momentum(self) -> tuple[float, float]:
+        """Total linear momentum of the moving bodies now."""
+        px = py = 0.0
+        for body in self._handles.values():
+            mass = body.mass
+            if mass is not None and not body.is_fixed:
+                vx, vy = body.velocity
+                px += mass * vx
+                py += mass * vy
+        return px, py
+
+
+def _restore_xy(F, i, old) -> None:
+    F[i, L.X], F[i, L.Y] = old
+
+
+def _owner(kind: str, options: dict) -> str:
+    name = options.get("name")
+    return kind if name is None else f"{kind} {name!r}"
+
+
+def _positive(owner: str, what: str, value) -> float:
+    value = check_number(owner, what, value)
+    if value <= 0.0:
+        raise ValueError(f"{owner}: {what} must be positive, got {value!r}")
+    return value
+
+
+def _check_elasticity(owner: str, value) -> float:
+    value = check_number(owner, "elasticity", value)
+    if not 0.0 <= value <= 1.0:
+        raise ValueError(f"{owner}: elasticity must be between 0 and 1, got {value!r}")
+    return value
+
+
+assert set(_RULE_CODES) == set(RESTITUTION_RULES)
