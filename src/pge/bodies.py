@@ -150,6 +150,30 @@ class Body:
         self._row()[1].set_angular_velocity(self, value)
 
     @property
+    def inertia(self) -> float | None:
+        """Moment of inertia about the centroid (mass x shape's inertia per mass); None
+        without a mass."""
+        mass = self.mass
+        return None if mass is None else mass * self.shape.inertia_per_mass
+
+    @property
+    def bounding_box(self) -> tuple[float, float, float, float]:
+        """Axis-aligned box ``(xmin, ymin, xmax, ymax)`` around the shape now."""
+        row, _ = self._row()
+        x, y = self.position
+        return (
+            float(x + row[L.EXT_X0]),
+            float(y + row[L.EXT_Y0]),
+            float(x + row[L.EXT_X1]),
+            float(y + row[L.EXT_Y1]),
+        )
+
+    @property
+    def bounding_radius(self) -> float:
+        """Largest distance of the shape from its reference point (any orientation)."""
+        return self.shape.bounding_radius
+
+    @property
     def vertices(self) -> tuple[tuple[float, float], ...]:
         """World coordinates of a polygon's corners (anticlockwise) now; () for a circle."""
         _, world = self._row()

@@ -45,6 +45,12 @@ class Circle:
         """Radius of the smallest circle about the centre holding the shape: r."""
         return self.radius
 
+    @property
+    def bounding_box(self) -> tuple[float, float, float, float]:
+        """Box around the shape relative to its centre: ``(-r, -r, r, r)``."""
+        r = self.radius
+        return (-r, -r, r, r)
+
     def __repr__(self) -> str:
         return f"Circle(radius={self.radius!r})"
 
@@ -74,6 +80,13 @@ class Polygon:
         """The polygon through ``points`` and the centroid of those points' outline."""
         centroid = polygon_properties(points, owner)[0]
         return cls(points, owner), centroid
+
+    @property
+    def bounding_box(self) -> tuple[float, float, float, float]:
+        """Box around the unrotated shape relative to its centroid ``(xmin, ymin, xmax, ymax)``."""
+        xs = [x for x, _ in self.vertices]
+        ys = [y for _, y in self.vertices]
+        return (min(xs), min(ys), max(xs), max(ys))
 
     def __repr__(self) -> str:
         return f"Polygon(vertices={list(self.vertices)!r})"

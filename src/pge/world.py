@@ -596,6 +596,8 @@ class World:
                 if timer is None:
                     continue  # cancelled
                 record = Timer(float(out[L.OUT_TIME]), timer_id, timer[1])
+                state.stats[L.S_EVENTS] += 1
+                state.stats[L.S_TIMERS] += 1
                 timer[0](record)
             elif code == L.FIRED_FRAME:
                 if int(out[L.OUT_EPOCH]) != self._frame_epoch:
@@ -645,11 +647,13 @@ class World:
         moving = [i for i in ids if not I[i, L.FIXED]]
         reaches = sorted(F[i, L.REACH] for i in moving) or [0.05]
         typical = reaches[len(reaches) // 2]
-        self._travel = self._skin_option or 2.0 * typical
-        state.P[L.TRAVEL] = self._travel
         x0, y0, x1, y1 = self._bounds
-        cell = self._cell_option or 4.0 * typical
-        cell = max(cell, math.sqrt((x1 - x0) * (y1 - y0) / (4.0 * len(ids) + 1024.0)))
+        # Cells: a few typical bodies wide, but never more cells than about 4 per body.
+        cell = self._cell_option or max(4.0 * typical, math.sqrt((x1 - x0) * (y1 - y0) / (4.0 * len(ids) + 4.0)))
+        # Travel per horizon: as far as still fits the widest moving body in one cell.
+        widest = max((self._extent(i) for i in moving), default=0.0)
+        self._travel = self._skin_option or max(2.0 * typical, cell - widest)
+        state.P[L.TRAVEL] = self._travel
         cell = max([cell] + [self._box_span(i) for i in moving])
         self._lay_grid(cell)
         for i in ids:
@@ -664,11 +668,13 @@ class World:
         self._unchecked.clear()
         self._predict(ids)
 
+    def _extent(self, i: int) -> float:
+        F = self._state.F
+        return max(F[i, L.EXT_X1] - F[i, L.EXT_X0], F[i, L.EXT_Y1] - F[i, L.EXT_Y0])
+
     def _box_span(self, i: int) -> float:
         """Widest swept box body ``i`` can have: shape extent plus travel, with margin."""
-        F = self._state.F
-        extent = max(F[i, L.EXT_X1] - F[i, L.EXT_X0], F[i, L.EXT_Y1] - F[i, L.EXT_Y0])
-        return (extent + self._travel) * (1.0 + 1e-6) + 4.0 * self._state.P[L.MARGIN]
+        return (self._extent(i) + self._travel) * (1.0 + 1e-6) + 4.0 * self._state.P[L.MARGIN]
 
     def _lay_grid(self, cell: float) -> None:
         state = self._state

@@ -105,7 +105,6 @@ from pge.core.layout import (
     S_PAIR_COLLISIONS,
     S_PREDICTIONS,
     S_STALE,
-    S_TIMERS,
     STAMP,
     STAMP_COUNTER,
     T0,
@@ -649,8 +648,6 @@ def run(S, until, notify_all):
             predict(S, a, 0)
         elif kind == TIMER:
             P[TIME] = t
-            stats[S_EVENTS] += 1
-            stats[S_TIMERS] += 1
             out[OUT_TIME] = t
             out[OUT_ID] = a
             return FIRED_TIMER
