@@ -247,6 +247,20 @@ def unlink(S, i):
     _unlink(S, i)
 
 
+@njit(cache=True, inline="always")
+def state_at(F, i, t):
+    """Position and velocity ``(x, y, vx, vy)`` of body ``i`` at time ``t``, in closed form."""
+    dt = t - F[i, T0]
+    ax = F[i, AX]
+    ay = F[i, AY]
+    return (
+        F[i, X] + (F[i, VX] + 0.5 * ax * dt) * dt,
+        F[i, Y] + (F[i, VY] + 0.5 * ay * dt) * dt,
+        F[i, VX] + ax * dt,
+        F[i, VY] + ay * dt,
+    )
+
+
 @njit(cache=True)
 def advance(F, i, t):
     """Move body ``i``'s reference state forward to time ``t`` (closed form)."""
@@ -269,13 +283,9 @@ def place(S, i):
     P = S[3]
     Q = S[4]
     now = P[TIME]
-    dt = now - F[i, T0]
     ax = F[i, AX]
     ay = F[i, AY]
-    x = F[i, X] + (F[i, VX] + 0.5 * ax * dt) * dt
-    y = F[i, Y] + (F[i, VY] + 0.5 * ay * dt) * dt
-    vx = F[i, VX] + ax * dt
-    vy = F[i, VY] + ay * dt
+    x, y, vx, vy = state_at(F, i, now)
     if I[i, FIXED] != 0 or (vx == 0.0 and vy == 0.0 and ax == 0.0 and ay == 0.0):
         horizon = _INF
         x0 = x
@@ -384,13 +394,9 @@ def predict(S, i, mark):
     n = gather(S, i)
     stats[S_CANDIDATES] += n
     now = P[TIME]
-    dt = now - F[i, T0]
     iax = F[i, AX]
     iay = F[i, AY]
-    ix = F[i, X] + (F[i, VX] + 0.5 * iax * dt) * dt
-    iy = F[i, Y] + (F[i, VY] + 0.5 * iay * dt) * dt
-    ivx = F[i, VX] + iax * dt
-    ivy = F[i, VY] + iay * dt
+    ix, iy, ivx, ivy = state_at(F, i, now)
     ih = F[i, HORIZON]
     bx0 = F[i, BOX_X0]
     by0 = F[i, BOX_Y0]
@@ -413,15 +419,13 @@ def predict(S, i, mark):
         if end == _INF:
             continue  # neither moves: no contact can start
         window = end - now
-        jdt = now - F[j, T0]
-        jax = F[j, AX]
-        jay = F[j, AY]
-        dx = ix - (F[j, X] + (F[j, VX] + 0.5 * jax * jdt) * jdt)
-        dy = iy - (F[j, Y] + (F[j, VY] + 0.5 * jay * jdt) * jdt)
-        dvx = ivx - (F[j, VX] + jax * jdt)
-        dvy = ivy - (F[j, VY] + jay * jdt)
-        dax = iax - jax
-        day = iay - jay
+        jx, jy, jvx, jvy = state_at(F, j, now)
+        dx = ix - jx
+        dy = iy - jy
+        dvx = ivx - jvx
+        dvy = ivy - jvy
+        dax = iax - F[j, AX]
+        day = iay - F[j, AY]
         if cannot_touch_before(dx, dy, dvx, dvy, dax, day, F[i, REACH] + F[j, REACH], window):
             stats[S_BOUND_REJECTS] += 1
             continue
@@ -670,13 +674,8 @@ def overlap_depth(S, i, j):
     I = S[1]
     OL = S[2]
     P = S[3]
-    now = P[TIME]
-    dti = now - F[i, T0]
-    dtj = now - F[j, T0]
-    xi = F[i, X] + (F[i, VX] + 0.5 * F[i, AX] * dti) * dti
-    yi = F[i, Y] + (F[i, VY] + 0.5 * F[i, AY] * dti) * dti
-    xj = F[j, X] + (F[j, VX] + 0.5 * F[j, AX] * dtj) * dtj
-    yj = F[j, Y] + (F[j, VY] + 0.5 * F[j, AY] * dtj) * dtj
+    xi, yi, _, _ = state_at(F, i, P[TIME])
+    xj, yj, _, _ = state_at(F, j, P[TIME])
     if I[i, KIND] == CIRCLE and I[j, KIND] == CIRCLE:
         return F[i, RADIUS] + F[j, RADIUS] - math.hypot(xi - xj, yi - yj)
     if I[i, KIND] == CIRCLE:
