@@ -16,7 +16,7 @@ from typing import Callable, Iterator
 import numpy as np
 
 from pge.bodies import Body
-from pge.core import engine
+from pge.core import engine, grid, queue
 from pge.core import layout as L
 from pge.core.state import EngineState
 from pge.events import Collision, Frame, Stop, Timer
@@ -34,7 +34,7 @@ OVERLAP_TOLERANCE = 1e-9
 
 _RULE_CODES = {name: code for code, name in enumerate(("min", "max", "mean", "geometric"))}
 _OPTIONS = frozenset(
-    ["mass", "velocity", "acceleration", "fixed", "elasticity", "angle", "angular_velocity", "name", "data"]
+    ["mass", "velocity", "acceleration", "fixed", "elasticity", "friction", "angle", "angular_velocity", "name", "data"]
 )
 
 
@@ -60,6 +60,12 @@ class World:
     * ``cell_size``, ``skin``: broad-phase tuning (grid cell side; distance a
       body may travel before its swept box is renewed). Derived from the
       typical body size when the world first runs, unless given.
+    * ``friction_rule``: how two bodies' friction coefficients combine, as
+      ``restitution`` (default ``"max"``, so giving one body friction is
+      enough).
+    * ``rest_height``: a bounce that would rise less than this times the
+      body's bounding radius ends in resting contact (default 1e-4): the body
+      then rests or slides on the surface instead of bouncing for ever.
 
     Time starts at 0. ``run_until(t)`` processes every event up to ``t``;
     ``events(until)`` yields them one by one; ``time`` is the current time,
@@ -75,6 +81,8 @@ class World:
         frame_rate: float | None = None,
         cell_size: float | None = None,
         skin: float | None = None,
+        friction_rule: str = "max",
+        rest_height: float = 1e-4,
     ) -> None:
         self._gravity = check_vector("World", "gravity", gravity)
         self._default_elasticity = _check_elasticity("World", elasticity)
@@ -91,6 +99,11 @@ class World:
         self._skin_option = None if skin is None else _positive("World", "skin", skin)
         self._state = EngineState()
         self._state.Q[L.RULE] = _RULE_CODES[restitution]
+        if friction_rule not in _RULE_CODES:
+            raise ValueError(f"World: friction_rule must be one of {sorted(_RULE_CODES)}, got {friction_rule!r}")
+        self._friction_rule = friction_rule
+        self._state.Q[L.FRICTION_RULE] = _RULE_CODES[friction_rule]
+        self._state.P[L.REST_HEIGHT] = _positive("World", "rest_height", rest_height)
         self._state.P[L.OVERLAP_TOLERANCE] = OVERLAP_TOLERANCE
         self._handles: dict[int, Body] = {}
         self._primed = False
@@ -128,6 +141,8 @@ class World:
         gravity = check_vector("World", "gravity", value)
         self._gravity = gravity
         moving = [i for i in self._handles if not self._state.I[i, L.FIXED]]
+        for i in moving:
+            self._release(i)
         for i in moving:
             engine.advance(self._state.F, i, self.time)
             self._update_acceleration(i)
@@ -229,6 +244,7 @@ class World:
         accel = check_vector(owner, "acceleration", options.get("acceleration", (0.0, 0.0)))
         elasticity = options.get("elasticity")
         elasticity = self._default_elasticity if elasticity is None else _check_elasticity(owner, elasticity)
+        friction = _check_friction(owner, options.get("friction", 0.0))
         angle = check_number(owner, "angle", options.get("angle", 0.0))
         omega = check_number(owner, "angular_velocity", options.get("angular_velocity", 0.0))
 
@@ -238,6 +254,8 @@ class World:
         F[i] = 0.0
         I[i] = 0
         I[i, L.CELL] = I[i, L.NEXT] = I[i, L.PREV] = -1
+        I[i, L.SUPPORT] = I[i, L.RIDER_HEAD] = I[i, L.EDGE_OWNER] = -1
+        F[i, L.FRICTION] = friction
         F[i, L.X], F[i, L.Y] = position
         F[i, L.T0] = self.time
         if fixed:
@@ -264,12 +282,12 @@ class World:
         if self._primed:
             try:
                 self._fit_grid(i)
-                self._place([i])
+                self._touch([i], predict=False)
                 self._check([i])
             except ValueError:
                 self._forget(i)
                 raise
-            self._predict([i])
+            self._drain()
         else:
             self._unchecked.add(i)
         return body
@@ -297,15 +315,17 @@ class World:
         """
         body = self._own(body)
         i = body.id
+        released = self._release(i)
         engine.advance(self._state.F, i, self.time)
         self._forget(i)
+        self._changed([j for j in released if j != i])
 
     def _forget(self, i: int) -> None:
         state = self._state
         was_fixed = bool(state.I[i, L.FIXED])
         state.I[i, L.COUNT] += 1
         state.I[i, L.ALIVE] = 0
-        engine.unlink(state.S, i)
+        grid.unlink(state.S, i)
         body = self._handles.pop(i)
         body.world = None
         self._body_callbacks.pop(i, None)
@@ -326,12 +346,22 @@ class World:
         return body
 
     def _update_acceleration(self, i: int) -> None:
+        """Free acceleration from own acceleration and gravity (the body must not be resting)."""
         F = self._state.F
         if self._state.I[i, L.FIXED]:
-            F[i, L.AX] = F[i, L.AY] = 0.0
+            F[i, L.FREE_AX] = F[i, L.FREE_AY] = 0.0
         else:
-            F[i, L.AX] = F[i, L.OWN_AX] + self._gravity[0]
-            F[i, L.AY] = F[i, L.OWN_AY] + self._gravity[1]
+            F[i, L.FREE_AX] = F[i, L.OWN_AX] + self._gravity[0]
+            F[i, L.FREE_AY] = F[i, L.OWN_AY] + self._gravity[1]
+        F[i, L.AX] = F[i, L.FREE_AX]
+        F[i, L.AY] = F[i, L.FREE_AY]
+
+    def _release(self, i: int) -> list[int]:
+        """Release body ``i`` from resting contact, and every body resting on it; returns
+        the bodies whose motion changed (advanced to now)."""
+        state = self._state
+        count = engine.release_body(state.S, i, self.time, state.group)
+        return [int(j) for j in state.group[:count]]
 
     def _set_inverse_mass(self, i: int) -> None:
         F = self._state.F
@@ -342,8 +372,7 @@ class World:
     def _changed(self, ids) -> None:
         """Bodies whose motion changed now: invalidate, place and predict them again."""
         if self._primed and ids:
-            self._place(ids)
-            self._predict(ids)
+            self._touch(ids)
 
     def set_position(self, body: Body, position) -> None:
         """Move a body to ``position`` now, keeping its velocity.
@@ -356,6 +385,7 @@ class World:
         x, y = check_vector(body.label(), "position", position)
         i = body.id
         F = self._state.F
+        self._changed(self._release(i))
         engine.advance(F, i, self.time)
         old = (F[i, L.X], F[i, L.Y])
         F[i, L.X], F[i, L.Y] = x, y
@@ -368,6 +398,7 @@ class World:
         angle = check_number(body.label(), "angle", angle)
         i = body.id
         old = float(self._state.F[i, L.ANGLE])
+        self._changed(self._release(i))
         engine.advance(self._state.F, i, self.time)
         self._orient(i, body.shape, angle)
         self._after_geometry_change(i, lambda: self._orient(i, body.shape, old))
@@ -377,15 +408,13 @@ class World:
             self._unchecked.add(i)
             return
         try:
-            self._place([i])
+            self._touch([i], predict=False)
             self._check([i])
         except ValueError:
             undo()
-            self._place([i])
-            if self._state.I[i, L.FIXED]:
-                self._state.rebuild_static()
+            self._touch([i])
             raise
-        self._predict([i])
+        self._drain()
 
     def set_velocity(self, body: Body, velocity) -> None:
         """Give a body a new velocity now. A fixed body keeps it until it is released."""
@@ -396,9 +425,10 @@ class World:
         if self._state.I[i, L.FIXED]:
             F[i, L.HELD_VX], F[i, L.HELD_VY] = vx, vy
             return
+        released = self._release(i)
         engine.advance(F, i, self.time)
         F[i, L.VX], F[i, L.VY] = vx, vy
-        self._changed([i])
+        self._changed([i] + released)
 
     def apply_impulse(self, body: Body, impulse) -> None:
         """Change a moving body's velocity by ``impulse / mass`` now.
@@ -413,10 +443,11 @@ class World:
             raise ValueError(f"{body.label()} is fixed and cannot take an impulse")
         if math.isnan(F[i, L.MASS]):
             raise ValueError(f"{body.label()} has no mass; give it one before applying an impulse")
+        released = self._release(i)
         engine.advance(F, i, self.time)
         F[i, L.VX] += jx * F[i, L.INV_MASS]
         F[i, L.VY] += jy * F[i, L.INV_MASS]
-        self._changed([i])
+        self._changed([i] + released)
 
     def set_acceleration(self, body: Body, acceleration) -> None:
         """Set a body's own constant acceleration (added to gravity) from now on."""
@@ -424,11 +455,13 @@ class World:
         ax, ay = check_vector(body.label(), "acceleration", acceleration)
         i = body.id
         F = self._state.F
+        released = self._release(i)
         engine.advance(F, i, self.time)
         F[i, L.OWN_AX], F[i, L.OWN_AY] = ax, ay
         self._update_acceleration(i)
         if not self._state.I[i, L.FIXED]:
-            self._changed([i])
+            released.append(i)
+        self._changed(released)
 
     def set_mass(self, body: Body, mass) -> None:
         """Set a body's mass (positive and finite)."""
@@ -436,6 +469,13 @@ class World:
         mass = _positive(body.label(), "mass", mass)
         self._state.F[body.id, L.MASS] = mass
         self._set_inverse_mass(body.id)
+
+    def set_friction(self, body: Body, friction) -> None:
+        """Set a body's Coulomb friction coefficient (0 or more; default 0, as in PGE)."""
+        body = self._own(body)
+        i = body.id
+        self._state.F[i, L.FRICTION] = _check_friction(body.label(), friction)
+        self._changed(self._release(i))
 
     def set_elasticity(self, body: Body, elasticity) -> None:
         """Set a body's elasticity, between 0 and 1."""
@@ -457,11 +497,12 @@ class World:
         fixed = bool(fixed)
         if fixed == bool(I[i, L.FIXED]):
             return
+        released = self._release(i)
         engine.advance(F, i, self.time)
         if fixed:
             F[i, L.HELD_VX], F[i, L.HELD_VY] = F[i, L.VX], F[i, L.VY]
             F[i, L.VX] = F[i, L.VY] = 0.0
-            engine.unlink(state.S, i)
+            grid.unlink(state.S, i)
         else:
             F[i, L.VX], F[i, L.VY] = F[i, L.HELD_VX], F[i, L.HELD_VY]
             self._unchecked.add(i)
@@ -471,10 +512,7 @@ class World:
         if self._primed:
             if not fixed:
                 self._fit_grid(i)
-            self._place([i])
-            if fixed:
-                state.rebuild_static()
-            self._predict([i])
+            self._touch([i] + [j for j in released if j != i])
 
     # --------------------------------------------------------------- callbacks
 
@@ -516,7 +554,7 @@ class World:
         self._next_timer += 1
         self._timers[timer_id] = (callback, data)
         self._state.ensure_events(1)
-        engine.push(self._state.S, when, (L.TIMER << L.KIND_SHIFT) | timer_id, timer_id, 0, 0, 0, 0)
+        queue.push(self._state.S, when, (L.TIMER << L.KIND_SHIFT) | timer_id, timer_id, 0, 0, 0, 0)
         return timer_id
 
     def cancel_timer(self, timer_id: int) -> bool:
@@ -626,7 +664,7 @@ class World:
     def _push_frame(self, index: int) -> None:
         when = self._frame_base + index / self._frame_rate
         self._state.ensure_events(1)
-        engine.push(
+        queue.push(
             self._state.S, when, (L.FRAME << L.KIND_SHIFT) | index, index, self._frame_epoch, 0, 0, 0
         )
 
@@ -658,15 +696,16 @@ class World:
         self._lay_grid(cell)
         for i in ids:
             engine.advance(F, i, self.time)
-        self._place(ids)
+        self._touch(ids, predict=False)
         try:
             self._check(ids)
         except ValueError:
             state.set_grid(x0, y0, x1, y1, cell)  # drop what was filed
+            state.Q[L.PENDING_N] = state.Q[L.PENDING_DONE] = 0
             raise
         self._primed = True
         self._unchecked.clear()
-        self._predict(ids)
+        self._drain()
 
     def _extent(self, i: int) -> float:
         F = self._state.F
@@ -690,29 +729,27 @@ class World:
         if span <= state.P[L.CELL_SIZE]:
             return
         self._lay_grid(2.0 * span)
-        ids = [j for j in sorted(self._handles) if j != i]
-        self._place(ids)
-        self._predict(ids)
+        self._touch([j for j in sorted(self._handles) if j != i])
 
-    def _place(self, ids) -> None:
-        """Invalidate and give new swept boxes to ``ids`` (motion or shape changed now)."""
+    def _touch(self, ids, predict: bool = True) -> None:
+        """Bodies whose motion or shape changed now: invalidate their events, give them new
+        swept boxes and contact events, and (unless ``predict`` is false) predict them."""
         state = self._state
-        array = np.asarray(ids, dtype=np.int64)
-        done = 0
-        while done < array.shape[0]:
-            state.ensure_events(0)
-            done = engine.place_group(state.S, array, done)
+        array = np.asarray(sorted(set(ids)), dtype=np.int64)
+        if array.shape[0] == 0:
+            return
+        state.ensure_events(2 * array.shape[0] + 16)
+        engine.touch_group(state.S, array, array.shape[0])
         if state.I[array, L.FIXED].any():
             state.rebuild_static()
+        if predict:
+            self._drain()
 
-    def _predict(self, ids) -> None:
+    def _drain(self) -> None:
+        """Run the queued predictions, growing the event arrays as needed."""
         state = self._state
-        array = np.asarray(ids, dtype=np.int64)
-        mark = engine.new_mark(state.S)
-        done = 0
-        while done < array.shape[0]:
+        while not engine.drain_predictions(state.S):
             state.ensure_events(0)
-            done = engine.predict_group(state.S, array, done, mark)
 
     # ------------------------------------------------------------- validation
 
@@ -798,6 +835,13 @@ def _positive(owner: str, what: str, value) -> float:
     value = check_number(owner, what, value)
     if value <= 0.0:
         raise ValueError(f"{owner}: {what} must be positive, got {value!r}")
+    return value
+
+
+def _check_friction(owner: str, value) -> float:
+    value = check_number(owner, "friction", value)
+    if value < 0.0:
+        raise ValueError(f"{owner}: friction must not be negative, got {value!r}")
     return value
 
 

@@ -21,7 +21,10 @@ OWN_AX, OWN_AY = 20, 21  # the body's own acceleration, on top of gravity
 ANGLE, OMEGA = 22, 23
 HELD_VX, HELD_VY = 24, 25  # velocity kept while fixed, restored by unfix
 MASS = 26  # nan until given
-NF = 27
+FREE_AX, FREE_AY = 27, 28  # own acceleration + gravity (zero if fixed): what the body feels when free
+REST_NX, REST_NY = 29, 30  # while resting: unit contact normal, from the support towards the body
+FRICTION = 31  # Coulomb friction coefficient
+NF = 32
 
 # ---- I: int64 per body -------------------------------------------------------
 KIND = 0  # pge.toi.CIRCLE or POLYGON
@@ -34,7 +37,15 @@ OUTLINE_START, OUTLINE_N = 7, 8  # polygon rows in the outline array
 NOTIFY = 9  # collisions of this body are reported to Python
 STAMP = 10  # de-duplication stamp used while gathering candidates
 MARK = 11  # pair-once mark used while predicting a group of bodies
-NI = 12
+SUPPORT = 12  # body this one rests on (-1: free); the support is fixed or itself resting
+RIDER_HEAD = 13  # first body resting on this one (-1: none)
+RIDER_NEXT, RIDER_PREV = 14, 15  # siblings in the support's rider list
+REST_MODE = 16  # NOT_RESTING, SLIDING or STUCK (static friction holds it)
+EDGE_OWNER = 17  # while resting on a flat contact: the body whose edge carries it (-1: curved contact)
+EDGE_INDEX = 18  # that edge's index in its owner's outline
+NI = 19
+
+NOT_RESTING, SLIDING, STUCK = 0, 1, 2
 
 # ---- P: float64 world parameters --------------------------------------------
 TIME = 0
@@ -43,7 +54,8 @@ CELL_SIZE, INV_CELL = 3, 4
 TRAVEL = 5  # distance a moving body may travel within one horizon
 MARGIN = 6  # safety margin added to every swept box
 OVERLAP_TOLERANCE = 7
-NP = 8
+REST_HEIGHT = 8  # a bounce lower than this times the body's bounding radius becomes resting contact
+NP = 9
 
 # ---- Q: int64 world parameters -----------------------------------------------
 GRID_NX, GRID_NY = 0, 1
@@ -53,7 +65,11 @@ MARK_COUNTER = 4
 HEAP_N = 5  # entries in the heap
 FREE_N = 6  # free event slots
 MIN_FREE = 7  # the loop returns NEED_SPACE when fewer slots are free
-NQ = 8
+FRICTION_RULE = 8  # how two friction coefficients combine (codes as RULE)
+PENDING_N = 9  # bodies waiting in `pending` to be predicted
+PENDING_DONE = 10  # how many of them are done
+PENDING_MARK = 11  # pair-once mark of the current batch
+NQ = 12
 
 # ---- stats: int64 counters ---------------------------------------------------
 STAT_NAMES = (
@@ -70,6 +86,9 @@ STAT_NAMES = (
     "bound_rejects",
     "predictions",
     "hits",
+    "rests",
+    "releases",
+    "contact_changes",
 )
 (
     S_EVENTS,
@@ -85,11 +104,15 @@ STAT_NAMES = (
     S_BOUND_REJECTS,
     S_PREDICTIONS,
     S_HITS,
-) = range(13)
-NSTATS = 13
+    S_RESTS,
+    S_RELEASES,
+    S_CONTACT_CHANGES,
+) = range(16)
+NSTATS = 16
 
 # ---- event kinds (high bits of the heap key; equal times pop in this order) --
-COLLISION, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3
+COLLISION, CONTACT_EVENT, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3, 4
+LEAVE, STOP_SLIDING = 0, 1  # what a CONTACT_EVENT is about
 KIND_SHIFT = 58
 ID_SHIFT = 29
 

@@ -21,6 +21,8 @@ class EngineState:
         self.F = np.zeros((capacity, L.NF))
         self.I = np.zeros((capacity, L.NI), dtype=np.int64)
         self.I[:, L.CELL] = -1
+        self.I[:, L.SUPPORT] = -1
+        self.I[:, L.RIDER_HEAD] = -1
         self.OL = np.zeros((64, 5))
         self.n_outline = 0
         self.P = np.zeros(L.NP)
@@ -39,6 +41,8 @@ class EngineState:
         self.stats = np.zeros(L.NSTATS, dtype=np.int64)
         self.out = np.zeros(L.NOUT)
         self.scratch = np.zeros(capacity, dtype=np.int64)
+        self.pending = np.zeros(4 * capacity + 16, dtype=np.int64)
+        self.group = np.zeros(4 * capacity + 16, dtype=np.int64)
         self._update_min_free()
         self.refresh()
 
@@ -61,12 +65,14 @@ class EngineState:
             self.stats,
             self.out,
             self.scratch,
+            self.pending,
+            self.group,
         )
 
     def _update_min_free(self) -> None:
-        # One event re-predicts at most two bodies, each pushing at most one
-        # event per other body plus its horizon.
-        self.Q[L.MIN_FREE] = 2 * self.n + 16
+        # One event touches at most every body once (two pushes each: horizon and
+        # contact change); one prediction pushes at most one event per other body.
+        self.Q[L.MIN_FREE] = 3 * self.n + 16
 
     # ------------------------------------------------------------- growth
 
@@ -79,8 +85,14 @@ class EngineState:
             I = np.zeros((capacity, L.NI), dtype=np.int64)
             I[: self.n] = self.I[: self.n]
             I[self.n :, L.CELL] = -1
+            I[self.n :, L.SUPPORT] = -1
+            I[self.n :, L.RIDER_HEAD] = -1
             self.F, self.I = F, I
             self.scratch = np.zeros(capacity, dtype=np.int64)
+            pending = np.zeros(4 * capacity + 16, dtype=np.int64)
+            pending[: self.pending.shape[0]] = self.pending
+            self.pending = pending
+            self.group = np.zeros(4 * capacity + 16, dtype=np.int64)
         index = self.n
         self.n += 1
         self._update_min_free()

@@ -87,13 +87,14 @@ def quadratic_roots(a, b, c):
 def first_descent_quadratic(c0, c1, c2, horizon, immediate):
     """Earliest ``t`` in ``[0, horizon]`` where the gap ``c0 + c1 t + c2 t^2`` closes.
 
-    Returns 0.0 for "overlapping and approaching" (``c0 <= 0 and c1 < 0``) when
+    Returns 0.0 for "overlapping and approaching" (``c0 <= 0`` and ``c1 < 0``,
+    or ``c1 == 0`` and ``c2 < 0``: touching at rest and pressed together) when
     ``immediate`` is true; otherwise only a passage from a positive gap to a
     non-positive one counts. Returns inf when the gap does not close within
     the horizon. Stable formula: accurate to a few units in the last place.
     """
     if c0 <= 0.0:
-        if c1 < 0.0:
+        if c1 < 0.0 or (c1 == 0.0 and c2 < 0.0):
             return 0.0 if immediate else _INF
         # Separating (or at rest) while touching: only a concave gap can rise
         # above zero and come back down; the later root is that descent.
@@ -215,7 +216,7 @@ def first_descent(c0, c1, c2, c3, c4, horizon, immediate):
     """Earliest ``t`` in ``[0, horizon]`` where a gap polynomial of degree <= 4 closes.
 
     With ``immediate`` true, a gap already non-positive and decreasing at 0
-    gives 0.0. Otherwise the answer is the first passage from ``p > 0`` to
+    (first derivative negative, or zero with a negative second) gives 0.0. Otherwise the answer is the first passage from ``p > 0`` to
     ``p <= 0``: root isolation on the monotone pieces between the critical
     points, then safeguarded refinement. Never later than the exact root, at
     most one floating-point step earlier. Returns inf if the gap does not
@@ -223,7 +224,7 @@ def first_descent(c0, c1, c2, c3, c4, horizon, immediate):
     """
     if c4 == 0.0 and c3 == 0.0:
         return first_descent_quadratic(c0, c1, c2, horizon, immediate)
-    if c0 <= 0.0 and c1 < 0.0 and immediate:
+    if c0 <= 0.0 and (c1 < 0.0 or (c1 == 0.0 and c2 < 0.0)) and immediate:
         return 0.0
     if not horizon > 0.0:
         return _INF

@@ -81,7 +81,8 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon):
             max_s = s
     if max_s <= radius:
         feature, nx, ny, gap = closest_feature(px, py, radius, outline, start, n)
-        if gap <= 0.0 and nx * vx + ny * vy < 0.0:
+        closing = nx * vx + ny * vy
+        if gap <= 0.0 and (closing < 0.0 or (closing == 0.0 and nx * ax + ny * ay < 0.0)):
             return 0.0, feature
     best_t = horizon
     best_feature = 0

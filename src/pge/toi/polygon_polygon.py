@@ -80,7 +80,8 @@ def polygon_polygon(dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, start_b, 
         if s > best_s:
             best_s = s
             best_f = f
-    if best_s <= 0.0 and faces[best_f, 0] * dvx + faces[best_f, 1] * dvy < 0.0:
+    closing = faces[best_f, 0] * dvx + faces[best_f, 1] * dvy
+    if best_s <= 0.0 and (closing < 0.0 or (closing == 0.0 and faces[best_f, 0] * dax + faces[best_f, 1] * day < 0.0)):
         return 0.0, best_f
     reach = 0.0
     for k in range(n_a):

@@ -1,0 +1,1 @@
+"""The compiled engine: arrays (state), queue, grid, prediction, contact and the loop."""

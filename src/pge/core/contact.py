@@ -1,0 +1,298 @@
+"""Resting and sliding contact: how bouncing ends without a Zeno storm.
+
+With elasticity below 1 under gravity a bouncing body would collide
+infinitely often in finite time. When a collision leaves two bodies closing
+so slowly that the next bounce would rise less than ``P[REST_HEIGHT]`` times
+the upper body's bounding radius, and the free accelerations press them together, the
+upper body (the *rider*) comes to rest on the other (its *support*, which
+must be fixed or resting itself): their relative normal velocity is set to
+zero and the normal part of the rider's relative acceleration is cancelled.
+The rider then slides along the contact with constant acceleration (Coulomb
+friction decelerating it), so its motion stays closed-form.
+
+A flat contact (an edge carries the other body) is left when the contact
+region slides off the end of the edge (a LEAVE event); a sliding contact with
+friction stops when the relative tangential velocity reaches zero (a
+STOP_SLIDING event), after which static friction may hold it. Curved contacts
+(circle on circle, circle on a corner) only rest when balanced (no tangential
+relative motion). Any change to a support's motion releases its riders, which
+settle again at once.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from pge.core import layout as L
+from pge.core.motion import state_at
+from pge.core.queue import push
+from pge.numerics.roots import first_descent_quadratic
+
+_INF = math.inf
+_BALANCE_TOLERANCE = 1e-12
+
+
+@njit(cache=True, inline="always")
+def grounded(I, s):
+    """True if body ``s`` cannot give way: fixed, or resting on a grounded body."""
+    return I[s, L.FIXED] != 0 or I[s, L.SUPPORT] >= 0
+
+
+@njit(cache=True, inline="always")
+def combine(ea, eb, rule):
+    """Combine two bodies' coefficients: 0 min, 1 max, 2 mean, 3 geometric mean."""
+    if rule == 0:
+        return min(ea, eb)
+    if rule == 1:
+        return max(ea, eb)
+    if rule == 2:
+        return 0.5 * (ea + eb)
+    if ea == eb:
+        return ea
+    return math.sqrt(ea * eb)
+
+
+@njit(cache=True)
+def relative_tangential(S, r, t):
+    """Rider ``r``'s tangential velocity and free tangential acceleration relative to its
+    support, and the pressing normal acceleration, at time ``t``: ``(vt, at, an)``."""
+    F = S[0]
+    I = S[1]
+    s = I[r, L.SUPPORT]
+    mx = F[r, L.REST_NX]
+    my = F[r, L.REST_NY]
+    _, _, rvx, rvy = state_at(F, r, t)
+    _, _, svx, svy = state_at(F, s, t)
+    rel_ax = F[r, L.FREE_AX] - F[s, L.AX]
+    rel_ay = F[r, L.FREE_AY] - F[s, L.AY]
+    vt = -(rvx - svx) * my + (rvy - svy) * mx
+    at = -rel_ax * my + rel_ay * mx
+    an = rel_ax * mx + rel_ay * my
+    return vt, at, an
+
+
+@njit(cache=True)
+def settle_acceleration(S, r, t):
+    """Set resting rider ``r``'s acceleration from its free one, its support's and friction.
+
+    Returns False when the free accelerations no longer press the two
+    together (the caller then releases the rider).
+    """
+    F = S[0]
+    I = S[1]
+    Q = S[4]
+    s = I[r, L.SUPPORT]
+    vt, at, an = relative_tangential(S, r, t)
+    if not an < 0.0:
+        return False
+    mu = combine(F[r, L.FRICTION], F[s, L.FRICTION], Q[L.FRICTION_RULE])
+    limit = -mu * an
+    if vt == 0.0:
+        if abs(at) <= limit:
+            I[r, L.REST_MODE] = L.STUCK
+            at_eff = 0.0
+        else:
+            I[r, L.REST_MODE] = L.SLIDING
+            at_eff = at - math.copysign(limit, at)
+    else:
+        I[r, L.REST_MODE] = L.SLIDING
+        at_eff = at - math.copysign(limit, vt)
+    mx = F[r, L.REST_NX]
+    my = F[r, L.REST_NY]
+    F[r, L.AX] = F[s, L.AX] - at_eff * my
+    F[r, L.AY] = F[s, L.AY] + at_eff * mx
+    return True
+
+
+@njit(cache=True)
+def try_rest(S, r, s, mx, my, owner, edge, t):
+    """Let rider ``r`` come to rest on ``s`` after a bounce, if it qualifies.
+
+    ``(mx, my)`` is the unit contact normal from ``s`` towards ``r``;
+    ``owner``/``edge`` name the edge carrying a flat contact (``owner = -1``
+    for a curved one). Both bodies are at time ``t``. Returns True if ``r``
+    now rests (its velocity and acceleration changed).
+    """
+    F = S[0]
+    I = S[1]
+    P = S[3]
+    if I[r, L.FIXED] != 0 or I[r, L.SUPPORT] >= 0 or not grounded(I, s):
+        return False
+    rel_vx = F[r, L.VX] - F[s, L.VX]
+    rel_vy = F[r, L.VY] - F[s, L.VY]
+    rel_ax = F[r, L.FREE_AX] - F[s, L.AX]
+    rel_ay = F[r, L.FREE_AY] - F[s, L.AY]
+    vn = rel_vx * mx + rel_vy * my
+    an = rel_ax * mx + rel_ay * my
+    if not an < 0.0:
+        return False
+    height = P[L.REST_HEIGHT] * F[r, L.REACH]
+    if vn > 0.0 and vn * vn > -2.0 * an * height:
+        return False
+    if owner < 0:
+        vt = -rel_vx * my + rel_vy * mx
+        at = -rel_ax * my + rel_ay * mx
+        if abs(vt) > _BALANCE_TOLERANCE * abs(vn) + 1e-300 or abs(at) > _BALANCE_TOLERANCE * abs(an):
+            return False  # a curved contact only holds a balanced body
+    F[r, L.VX] -= vn * mx
+    F[r, L.VY] -= vn * my
+    F[r, L.REST_NX] = mx
+    F[r, L.REST_NY] = my
+    I[r, L.SUPPORT] = s
+    I[r, L.EDGE_OWNER] = owner
+    I[r, L.EDGE_INDEX] = edge
+    first = I[s, L.RIDER_HEAD]
+    I[r, L.RIDER_NEXT] = first
+    I[r, L.RIDER_PREV] = -1
+    if first >= 0:
+        I[first, L.RIDER_PREV] = r
+    I[s, L.RIDER_HEAD] = r
+    if not settle_acceleration(S, r, t):
+        detach(S, r)
+        return False
+    return True
+
+
+@njit(cache=True)
+def detach(S, r):
+    """Take rider ``r`` off its support's rider list and give it its free acceleration."""
+    F = S[0]
+    I = S[1]
+    s = I[r, L.SUPPORT]
+    if s < 0:
+        return
+    before = I[r, L.RIDER_PREV]
+    after = I[r, L.RIDER_NEXT]
+    if before >= 0:
+        I[before, L.RIDER_NEXT] = after
+    else:
+        I[s, L.RIDER_HEAD] = after
+    if after >= 0:
+        I[after, L.RIDER_PREV] = before
+    I[r, L.SUPPORT] = -1
+    I[r, L.REST_MODE] = L.NOT_RESTING
+    I[r, L.EDGE_OWNER] = -1
+    F[r, L.AX] = F[r, L.FREE_AX]
+    F[r, L.AY] = F[r, L.FREE_AY]
+
+
+@njit(cache=True)
+def release_riders(S, s, out, count, t):
+    """Release every body resting on ``s``, directly or through others.
+
+    The released bodies are advanced to ``t`` and appended to ``out`` from
+    index ``count``; returns the new count.
+    """
+    F = S[0]
+    I = S[1]
+    stats = S[13]
+    start = count
+    r = I[s, L.RIDER_HEAD]
+    while r >= 0:
+        out[count] = r
+        count += 1
+        r = I[r, L.RIDER_NEXT]
+    k = start
+    while k < count:
+        r = out[k]
+        k += 1
+        advance_to(F, r, t)
+        child = I[r, L.RIDER_HEAD]
+        while child >= 0:
+            out[count] = child
+            count += 1
+            child = I[child, L.RIDER_NEXT]
+        detach(S, r)
+        stats[L.S_RELEASES] += 1
+    return count
+
+
+@njit(cache=True, inline="always")
+def advance_to(F, i, t):
+    dt = t - F[i, L.T0]
+    if dt != 0.0:
+        ax = F[i, L.AX]
+        ay = F[i, L.AY]
+        F[i, L.X] += (F[i, L.VX] + 0.5 * ax * dt) * dt
+        F[i, L.Y] += (F[i, L.VY] + 0.5 * ay * dt) * dt
+        F[i, L.VX] += ax * dt
+        F[i, L.VY] += ay * dt
+        F[i, L.T0] = t
+
+
+@njit(cache=True)
+def _contact_span(S, r, t):
+    """Where the flat contact of rider ``r`` lies along its edge at ``t``.
+
+    Returns ``(low, high, length, tx, ty, other, owner)``: the other body's
+    contact extent as tangential coordinates from the edge's first vertex,
+    the edge length and unit tangent, and which body is the edge's owner.
+    """
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    owner = I[r, L.EDGE_OWNER]
+    other = I[r, L.SUPPORT] if owner == r else r
+    row = I[owner, L.OUTLINE_START] + I[r, L.EDGE_INDEX]
+    nx = OL[row, 2]
+    ny = OL[row, 3]
+    tx = -ny
+    ty = nx
+    ox, oy, _, _ = state_at(F, owner, t)
+    qx = ox + OL[row, 0]
+    qy = oy + OL[row, 1]
+    px, py, _, _ = state_at(F, other, t)
+    if I[other, L.KIND] == 0:
+        u = (px - qx) * tx + (py - qy) * ty
+        return u, u, OL[row, 4], tx, ty, other, owner
+    start = I[other, L.OUTLINE_START]
+    n = I[other, L.OUTLINE_N]
+    lowest = _INF
+    for k in range(n):
+        lowest = min(lowest, nx * OL[start + k, 0] + ny * OL[start + k, 1])
+    tolerance = 1e-9 * F[other, L.REACH]
+    low = _INF
+    high = -_INF
+    for k in range(n):
+        if nx * OL[start + k, 0] + ny * OL[start + k, 1] <= lowest + tolerance:
+            u = (px + OL[start + k, 0] - qx) * tx + (py + OL[start + k, 1] - qy) * ty
+            low = min(low, u)
+            high = max(high, u)
+    return low, high, OL[row, 4], tx, ty, other, owner
+
+
+@njit(cache=True)
+def schedule_contact_event(S, r):
+    """Queue the next change of rider ``r``'s contact: leaving its edge or stopping."""
+    F = S[0]
+    I = S[1]
+    P = S[3]
+    now = P[L.TIME]
+    best = _INF
+    what = L.LEAVE
+    if I[r, L.EDGE_OWNER] >= 0:
+        low, high, length, tx, ty, other, owner = _contact_span(S, r, now)
+        _, _, ovx, ovy = state_at(F, other, now)
+        _, _, wvx, wvy = state_at(F, owner, now)
+        dv = (ovx - wvx) * tx + (ovy - wvy) * ty
+        da = 0.5 * ((F[other, L.AX] - F[owner, L.AX]) * tx + (F[other, L.AY] - F[owner, L.AY]) * ty)
+        if high < 0.0 or low > length:
+            best = 0.0
+        else:
+            best = min(
+                first_descent_quadratic(high, dv, da, _INF, False),
+                first_descent_quadratic(length - low, -dv, -da, _INF, False),
+            )
+    if I[r, L.REST_MODE] == L.SLIDING:
+        vt, _, _ = relative_tangential(S, r, now)
+        s = I[r, L.SUPPORT]
+        at_eff = -(F[r, L.AX] - F[s, L.AX]) * F[r, L.REST_NY] + (F[r, L.AY] - F[s, L.AY]) * F[r, L.REST_NX]
+        if vt != 0.0 and at_eff != 0.0 and (vt > 0.0) != (at_eff > 0.0):
+            stop = -vt / at_eff
+            if stop < best:
+                best = stop
+                what = L.STOP_SLIDING
+    if best != _INF:
+        push(S, now + best, (L.CONTACT_EVENT << L.KIND_SHIFT) | r, r, -1, I[r, L.COUNT], 0, what)

@@ -1,0 +1,164 @@
+"""Swept boxes and pair prediction: the broad phase feeding the exact kernels.
+
+A moving body owns a horizon ``h`` and the box its shape sweeps over
+``[now, h]``, chosen so that it travels at most ``P[TRAVEL]``. A pair is
+predicted over ``[now, min(h_i, h_j)]`` only if the boxes overlap and the
+conservative short-circuit test cannot exclude contact; the exact kernel's
+hit is queued. A HORIZON event renews the box. Invariant: a pair that first
+touches at ``t <= min(h_i, h_j)`` has a valid event at or before ``t``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from pge.broadphase.bounds import cannot_touch_before, swept_range, travel_horizon
+from pge.core import layout as L
+from pge.core.grid import file_in_cell, gather
+from pge.core.motion import state_at
+from pge.core.queue import push
+from pge.toi.circle_circle import circle_circle
+from pge.toi.circle_polygon import circle_polygon
+from pge.toi.polygon_polygon import polygon_polygon
+
+_INF = math.inf
+CIRCLE = 0
+
+
+@njit(cache=True)
+def place(S, i):
+    """Give body ``i`` a horizon and a swept box from now; file a moving body in the grid."""
+    F = S[0]
+    I = S[1]
+    P = S[3]
+    now = P[L.TIME]
+    ax = F[i, L.AX]
+    ay = F[i, L.AY]
+    x, y, vx, vy = state_at(F, i, now)
+    if I[i, L.FIXED] != 0 or (vx == 0.0 and vy == 0.0 and ax == 0.0 and ay == 0.0):
+        horizon = _INF
+        x0 = x
+        x1 = x
+        y0 = y
+        y1 = y
+    else:
+        span = travel_horizon(math.hypot(vx, vy), math.hypot(ax, ay), P[L.TRAVEL])
+        horizon = now + span
+        if horizon <= now:
+            horizon = np.nextafter(now, _INF)
+            span = horizon - now
+        x0, x1 = swept_range(x, vx, ax, span)
+        y0, y1 = swept_range(y, vy, ay, span)
+    margin = P[L.MARGIN]
+    F[i, L.BOX_X0] = x0 + F[i, L.EXT_X0] - margin
+    F[i, L.BOX_Y0] = y0 + F[i, L.EXT_Y0] - margin
+    F[i, L.BOX_X1] = x1 + F[i, L.EXT_X1] + margin
+    F[i, L.BOX_Y1] = y1 + F[i, L.EXT_Y1] + margin
+    F[i, L.HORIZON] = horizon
+    if I[i, L.FIXED] == 0:
+        file_in_cell(S, i)
+    if horizon != _INF:
+        push(S, horizon, (L.HORIZON_EVENT << L.KIND_SHIFT) | i, i, -1, I[i, L.COUNT], 0, 0)
+
+
+@njit(cache=True)
+def predict(S, i, mark):
+    """Predict body ``i`` against every candidate (skipping bodies carrying ``mark`` and
+    the body it rests on or that rests on it)."""
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    P = S[3]
+    stats = S[13]
+    scratch = S[15]
+    n = gather(S, i)
+    stats[L.S_CANDIDATES] += n
+    now = P[L.TIME]
+    iax = F[i, L.AX]
+    iay = F[i, L.AY]
+    ix, iy, ivx, ivy = state_at(F, i, now)
+    ih = F[i, L.HORIZON]
+    bx0 = F[i, L.BOX_X0]
+    by0 = F[i, L.BOX_Y0]
+    bx1 = F[i, L.BOX_X1]
+    by1 = F[i, L.BOX_Y1]
+    ifixed = I[i, L.FIXED] != 0
+    ikind = I[i, L.KIND]
+    isupport = I[i, L.SUPPORT]
+    for k in range(n):
+        j = scratch[k]
+        if mark != 0 and I[j, L.MARK] == mark:
+            continue
+        if ifixed and I[j, L.FIXED] != 0:
+            continue
+        if j == isupport or I[j, L.SUPPORT] == i:
+            continue  # a resting contact is not a collision
+        if F[j, L.BOX_X0] > bx1 or F[j, L.BOX_X1] < bx0 or F[j, L.BOX_Y0] > by1 or F[j, L.BOX_Y1] < by0:
+            stats[L.S_BOX_REJECTS] += 1
+            continue
+        end = F[j, L.HORIZON]
+        if ih < end:
+            end = ih
+        if end == _INF:
+            continue  # neither moves: no contact can start
+        window = end - now
+        jx, jy, jvx, jvy = state_at(F, j, now)
+        dx = ix - jx
+        dy = iy - jy
+        dvx = ivx - jvx
+        dvy = ivy - jvy
+        dax = iax - F[j, L.AX]
+        day = iay - F[j, L.AY]
+        if cannot_touch_before(dx, dy, dvx, dvy, dax, day, F[i, L.REACH] + F[j, L.REACH], window):
+            stats[L.S_BOUND_REJECTS] += 1
+            continue
+        stats[L.S_PREDICTIONS] += 1
+        jkind = I[j, L.KIND]
+        first = i
+        second = j
+        if ikind == CIRCLE:
+            if jkind == CIRCLE:
+                t, feature = circle_circle(dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], F[j, L.RADIUS], window)
+            else:
+                t, feature = circle_polygon(
+                    dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], window
+                )
+        elif jkind == CIRCLE:
+            t, feature = circle_polygon(
+                -dx, -dy, -dvx, -dvy, -dax, -day, F[j, L.RADIUS], OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], window
+            )
+            first = j
+            second = i
+        else:
+            t, feature = polygon_polygon(
+                dx,
+                dy,
+                dvx,
+                dvy,
+                dax,
+                day,
+                OL,
+                I[i, L.OUTLINE_START],
+                I[i, L.OUTLINE_N],
+                I[j, L.OUTLINE_START],
+                I[j, L.OUTLINE_N],
+                window,
+            )
+        if t != _INF:
+            stats[L.S_HITS] += 1
+            if i < j:
+                key = (i << L.ID_SHIFT) | j
+            else:
+                key = (j << L.ID_SHIFT) | i
+            push(S, now + t, key, first, second, I[first, L.COUNT], I[second, L.COUNT], feature)
+
+
+@njit(cache=True)
+def new_mark(S):
+    """A fresh pair-once mark."""
+    Q = S[4]
+    Q[L.MARK_COUNTER] += 1
+    return Q[L.MARK_COUNTER]
