@@ -13,10 +13,13 @@ friction decelerating it), so its motion stays closed-form.
 A flat contact (an edge carries the other body) is left when the contact
 region slides off the end of the edge (a LEAVE event); a sliding contact with
 friction stops when the relative tangential velocity reaches zero (a
-STOP_SLIDING event), after which static friction may hold it. Curved contacts
-(circle on circle, circle on a corner) only rest when balanced (no tangential
-relative motion). Any change to a support's motion releases its riders, which
-settle again at once.
+STOP_SLIDING event), after which static friction may hold it. On a curved
+contact (circle on circle, circle on a corner) a balanced body (no tangential
+relative motion) rests for good; one moving sideways slides along the tangent
+line for a short step (``CURVED_STEP`` of its bounding radius, never into the
+other body) and is then released, so rolling over a corner becomes a short
+sequence of steps until it flies off. Any change to a support's motion
+releases its riders, which settle again at once.
 """
 
 from __future__ import annotations
@@ -32,6 +35,10 @@ from pge.numerics.roots import first_descent_quadratic
 
 _INF = math.inf
 _BALANCE_TOLERANCE = 1e-12
+#: a body pressed onto a curved feature slides along the tangent for this many bounding
+#: radii before it is released and the contact is looked at afresh.
+CURVED_STEP = 0.02
+CURVED_STEPPING = -2  # EDGE_OWNER value of a curved contact that is being stepped over
 
 
 @njit(cache=True, inline="always")
@@ -135,7 +142,7 @@ def try_rest(S, r, s, mx, my, owner, edge, t):
         vt = -rel_vx * my + rel_vy * mx
         at = -rel_ax * my + rel_ay * mx
         if abs(vt) > _BALANCE_TOLERANCE * abs(vn) + 1e-300 or abs(at) > _BALANCE_TOLERANCE * abs(an):
-            return False  # a curved contact only holds a balanced body
+            owner = CURVED_STEPPING
     F[r, L.VX] -= vn * mx
     F[r, L.VY] -= vn * my
     F[r, L.REST_NX] = mx
@@ -272,7 +279,16 @@ def schedule_contact_event(S, r):
     now = P[L.TIME]
     best = _INF
     what = L.LEAVE
-    if I[r, L.EDGE_OWNER] >= 0:
+    if I[r, L.EDGE_OWNER] == CURVED_STEPPING:
+        s = I[r, L.SUPPORT]
+        vt, _, _ = relative_tangential(S, r, now)
+        half_at = 0.5 * (-(F[r, L.AX] - F[s, L.AX]) * F[r, L.REST_NY] + (F[r, L.AY] - F[s, L.AY]) * F[r, L.REST_NX])
+        step = CURVED_STEP * F[r, L.REACH]
+        best = min(
+            first_descent_quadratic(step, -vt, -half_at, _INF, False),
+            first_descent_quadratic(step, vt, half_at, _INF, False),
+        )
+    elif I[r, L.EDGE_OWNER] >= 0:
         low, high, length, tx, ty, other, owner = _contact_span(S, r, now)
         _, _, ovx, ovy = state_at(F, other, now)
         _, _, wvx, wvy = state_at(F, owner, now)
