@@ -150,6 +150,23 @@ class Body:
         self._row()[1].set_angular_velocity(self, value)
 
     @property
+    def friction(self) -> float:
+        """Coulomb friction coefficient (0 unless given), combined by the world's friction rule."""
+        row, _ = self._row()
+        return float(row[L.FRICTION])
+
+    @friction.setter
+    def friction(self, value) -> None:
+        self._row()[1].set_friction(self, value)
+
+    @property
+    def resting_on(self) -> "Body | None":
+        """The body this one rests or slides on (resting contact), or None while free."""
+        _, world = self._row()
+        support = int(world._state.I[self.id, L.SUPPORT])
+        return world._handles.get(support) if support >= 0 else None
+
+    @property
     def inertia(self) -> float | None:
         """Moment of inertia about the centroid (mass x shape's inertia per mass); None
         without a mass."""
