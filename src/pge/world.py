@@ -182,7 +182,9 @@ class World:
         kind), collisions, pair_collisions (both bodies moving), horizons (swept-box
         renewals), timers, frames, stale (invalidated queue entries skipped), grazes,
         candidates (pairs gathered from the grid), box_rejects, bound_rejects
-        (short-circuit test), predictions (exact time-of-impact solves), hits."""
+        (short-circuit test), predictions (exact time-of-impact solves), hits, rests
+        (bounces that ended in resting contact), releases (bodies lifted off a support),
+        contact_changes (a resting body left its edge or stopped sliding)."""
         return {name: int(value) for name, value in zip(L.STAT_NAMES, self._state.stats)}
 
     @property
