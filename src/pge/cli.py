@@ -1,11 +1,32 @@
-"""The ``pge`` command line."""
+"""The ``pge`` command line: showcase, info, export.
+
+Every failure the user can cause (missing file, a file that is not a
+recording, a damaged recording, bad options) ends with one line
+``pge: error: ...`` on stderr and a non-zero exit status: 2 for bad usage,
+1 otherwise. Set PGE_DEBUG=1 to see the traceback of an unexpected error.
+"""
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from pge import __version__
+
+_EPILOG_EXPORT = """\
+examples:
+  pge export run.pgerec frames/                 every frame as frames/frame_00000.png, ...
+  pge export run.pgerec run.gif --fps 25        an animated GIF at 25 frames per second
+  pge export run.pgerec run.mp4 --size 1280x720 --start 2 --end 10
+"""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, but a usage error is one line naming the command's --help."""
+
+    def error(self, message):
+        self.exit(2, f"pge: error: {message} (see '{self.prog} --help')\n")
 
 
 def _showcase(args) -> int:
@@ -15,30 +36,182 @@ def _showcase(args) -> int:
     return 0
 
 
+def _open(args):
+    from pge.recording import open_recording
+
+    return open_recording(args.file, strict=not args.partial)
+
+
+def _info(args) -> int:
+    recording = _open(args)
+    kinds = [body.kind for body in recording.bodies.values()]
+    writer = f" (written by {recording.writer})" if recording.writer else ""
+    rate = f" at {recording.frame_rate:g} fps" if recording.frame_rate else ""
+    if recording.damage is not None:
+        state = f"no: {recording.damage}"
+    elif recording.complete:
+        state = "yes"
+    else:
+        state = "no end record (still being written, or cut at a record boundary)"
+    lines = [
+        ("file", str(recording.path)),
+        ("format", recording.format + writer),
+        ("duration", f"{recording.duration:g} s ({recording.start_time:g} s to {recording.end_time:g} s)"),
+        ("frames", f"{len(recording)}{rate}"),
+        ("bodies", f"{len(kinds)} ({kinds.count('circle')} circles, {kinds.count('polygon')} polygons)"),
+        ("collisions", str(recording.event_counts.get("collisions", 0))),
+        ("timers", str(recording.event_counts.get("timers", 0))),
+        ("bounds", " ".join(f"{v:g}" for v in recording.bounds)),
+        ("complete", state),
+    ]
+    lines += [("note", note) for note in recording.notes]
+    for name, value in lines:
+        print(f"{name:<11}{value}")
+    return 0
+
+
+def _size(text: str) -> tuple[int, int]:
+    try:
+        parts = [int(p) for p in text.lower().split("x")]
+    except ValueError:
+        parts = []
+    if len(parts) == 1:
+        parts *= 2
+    if len(parts) != 2 or min(parts) < 1 or max(parts) > 16384:
+        raise argparse.ArgumentTypeError(f"size must be WIDTHxHEIGHT or SIDE in pixels, got {text!r}")
+    return parts[0], parts[1]
+
+
+def _positive(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not value > 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"must be a positive number, got {text!r}")
+    return value
+
+
+def _time(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if value != value or abs(value) == float("inf"):
+        raise argparse.ArgumentTypeError(f"must be a time in seconds, got {text!r}")
+    return value
+
+
+def _export(args) -> int:
+    from pge.render.export import export
+
+    recording = _open(args)
+    count = export(
+        recording,
+        args.out,
+        size=args.size,
+        fps=args.fps,
+        start=args.start,
+        end=args.end,
+        progress=not args.quiet,
+    )
+    if not args.quiet:
+        print(f"pge export: {count} frames written to {args.out}")
+    return 0
+
+
+def _add_file(command) -> None:
+    command.add_argument("file", metavar="FILE", help="a pge recording (.pgerec) or an original PGE output.raw")
+    command.add_argument(
+        "--partial",
+        action="store_true",
+        help="read a truncated or corrupt file up to the damage instead of refusing it",
+    )
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``pge`` command."""
-    parser = argparse.ArgumentParser(prog="pge", description="pge: a predictive 2D physics and game engine")
+    parser = _Parser(prog="pge", description="pge: a predictive 2D physics and game engine")
     parser.add_argument("--version", action="version", version=f"pge {__version__}")
-    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+
     showcase = commands.add_parser("showcase", help="run the headless showcase scene and write a picture")
     showcase.add_argument("--out", default="out", help="directory for the picture (default: out)")
     showcase.add_argument("--duration", type=float, default=5.0, help="simulated seconds (default: 5)")
     showcase.add_argument("--seed", type=int, default=1, help="random seed of the scene (default: 1)")
     showcase.set_defaults(handler=_showcase)
+
+    info = commands.add_parser(
+        "info",
+        help="describe a recording: duration, frames, bodies, event counts",
+        description="Describe a recording: format, duration, frames, bodies, collision and timer counts, "
+        "and whether it is complete.",
+    )
+    _add_file(info)
+    info.set_defaults(handler=_info)
+
+    export = commands.add_parser(
+        "export",
+        help="export a recording as PNG frames, an animated GIF or an MP4 video",
+        description="Export a recording. OUT ending in .gif writes an animated GIF, .mp4 an H.264 video; "
+        "any other name is a directory that receives one PNG per frame.",
+        epilog=_EPILOG_EXPORT,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    _add_file(export)
+    export.add_argument("out", metavar="OUT", help="DIRECTORY for PNG frames, or FILE.gif, or FILE.mp4")
+    export.add_argument(
+        "--size", type=_size, default=(512, 512), metavar="WxH", help="picture size in pixels (default: 512x512)"
+    )
+    export.add_argument(
+        "--fps",
+        type=_positive,
+        default=None,
+        help="output frames per second of simulated time (default: every frame for PNG; "
+        "the recording's rate, at most 50 for GIF and 60 for MP4)",
+    )
+    export.add_argument("--start", type=_time, default=None, metavar="T", help="first time in seconds (default: start)")
+    export.add_argument("--end", type=_time, default=None, metavar="T", help="last time in seconds (default: end)")
+    export.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no summary line")
+    export.set_defaults(handler=_export)
+
     return parser
 
 
+def _message(error: BaseException) -> str:
+    if isinstance(error, FileNotFoundError):
+        return f"{error.filename}: no such file"
+    if isinstance(error, IsADirectoryError):
+        return f"{error.filename}: is a directory, not a recording"
+    if isinstance(error, PermissionError):
+        return f"{error.filename}: permission denied"
+    if isinstance(error, OSError) and error.filename is not None:
+        return f"{error.filename}: {error.strerror or error}"
+    return str(error)
+
+
 def main(argv=None) -> int:
-    """Entry point of the ``pge`` console script."""
+    """Entry point of the ``pge`` console script; returns the exit status."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as done:
+        return int(done.code or 0)
     if not getattr(args, "handler", None):
         parser.print_help()
         return 2
     try:
         return args.handler(args)
+    except KeyboardInterrupt:
+        print("pge: interrupted", file=sys.stderr)
+        return 130
     except (ValueError, OSError) as error:
-        print(f"pge: error: {error}", file=sys.stderr)
+        print(f"pge: error: {_message(error)}", file=sys.stderr)
+        return 1
+    except Exception as error:  # never a traceback for users; PGE_DEBUG=1 shows it
+        if os.environ.get("PGE_DEBUG"):
+            raise
+        print(f"pge: error: unexpected {type(error).__name__}: {error}", file=sys.stderr)
         return 1
 
 

@@ -164,6 +164,11 @@ class World:
             self._push_frame(1)
 
     @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """The region ``(x0, y0, x1, y1)`` covered by the broad-phase grid (and drawn by default)."""
+        return self._bounds
+
+    @property
     def restitution(self) -> str:
         """Name of the rule combining two bodies' elasticities (see ``pge.response``)."""
         return self._restitution

@@ -34,7 +34,7 @@ def render_image(world, size=(800, 800), bounds=None) -> Image.Image:
     is ``body.data["colour"]`` when given as an RGB tuple, else from PALETTE.
     """
     width, height = size
-    x0, y0, x1, y1 = bounds if bounds is not None else world._bounds
+    x0, y0, x1, y1 = bounds if bounds is not None else world.bounds
     big = (width * _SUPERSAMPLE, height * _SUPERSAMPLE)
     sx = big[0] / (x1 - x0)
     sy = big[1] / (y1 - y0)
