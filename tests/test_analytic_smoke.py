@@ -23,6 +23,8 @@ def test_showcase_conserves_energy_and_never_overlaps(tmp_path):
     from pge.showcase import run_showcase
 
     summary = run_showcase(tmp_path, duration=1.0)
+    assert (tmp_path / "showcase.gif").stat().st_size > 1000
+    assert (tmp_path / "showcase.pgerec").stat().st_size > 1000
     assert abs(summary["energy_drift"]) < 1e-9
     assert summary["worst_overlap"] <= 1e-9
     assert summary["collisions"] > 100

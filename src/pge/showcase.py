@@ -79,17 +79,30 @@ def total_energy(world: World) -> float:
     return energy
 
 
-def run_showcase(out_dir="out", duration: float = 5.0, seed: int = 1) -> dict:
-    """Run the showcase headless, print a summary and write ``showcase.png``."""
+def run_showcase(out_dir="out", duration: float = 5.0, seed: int = 1, gif: bool = True) -> dict:
+    """Run the showcase headless and record it; print a summary and write
+    ``showcase.png`` (final state), ``showcase.pgerec`` (the recording) and,
+    unless ``gif`` is false, ``showcase.gif`` (exported from the recording)."""
+    from pge.recording import Recorder, open_recording
+    from pge.render.export import export
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
     world = build_showcase(seed)
     energy_start = total_energy(world)
+    recording_path = out / "showcase.pgerec"
     started = time.perf_counter()
-    world.run_until(duration)
+    with Recorder(world, recording_path, frame_rate=25.0):
+        world.run_until(duration)
     elapsed = time.perf_counter() - started
     energy_end = total_energy(world)
     stats = world.stats
     worst = max((depth for _, _, depth in world.overlaps()), default=0.0)
-    picture = save_png(world, Path(out_dir) / "showcase.png")
+    picture = save_png(world, out / "showcase.png")
+    animation = None
+    if gif:
+        animation = out / "showcase.gif"
+        export(open_recording(recording_path), animation, size=(360, 360), progress=False)
     summary = {
         "bodies": len(world),
         "simulated_s": duration,
@@ -102,6 +115,8 @@ def run_showcase(out_dir="out", duration: float = 5.0, seed: int = 1) -> dict:
         "energy_drift": (energy_end - energy_start) / energy_start,
         "worst_overlap": worst,
         "picture": str(picture),
+        "recording": str(recording_path),
+        "animation": None if animation is None else str(animation),
     }
     print(f"pge showcase: {summary['bodies']} bodies, {duration:g} simulated seconds in {elapsed:.2f} s wall")
     print(f"  collisions        {summary['collisions']:>10}  ({summary['pair_collisions']} between moving bodies)")
@@ -109,5 +124,8 @@ def run_showcase(out_dir="out", duration: float = 5.0, seed: int = 1) -> dict:
     print(f"  exact predictions {summary['predictions']:>10}  (broad phase avoided {summary['predictions_avoided']})")
     print(f"  energy drift      {summary['energy_drift']:>10.2e}  (elasticity 1: should be ~0)")
     print(f"  worst overlap     {summary['worst_overlap']:>10.2e}")
-    print(f"  picture           {summary['picture']}")
+    print(f"  picture           {summary['picture']}  (final state)")
+    print(f"  recording         {summary['recording']}  (pge info / pge export)")
+    if animation is not None:
+        print(f"  animation         {summary['animation']}")
     return summary
