@@ -38,6 +38,8 @@ def check_number(owner: str, what: str, value) -> float:
 
 def check_vector(owner: str, what: str, value) -> Vec:
     """``value`` as a pair of finite floats, or a clear TypeError/ValueError."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{owner}: {what} must be a pair of numbers (x, y), got {value!r}")
     try:
         items = tuple(value)
     except TypeError:
@@ -78,6 +80,11 @@ def polygon_properties(points: Sequence, owner: str = "polygon"):
             raise ValueError(
                 f"{owner}: vertex {(k + 1) % n} repeats vertex {k}; give each corner once"
             )
+    crossing = None if _collinear(pts) else _edges_crossing(pts)
+    if crossing is not None:
+        raise ValueError(
+            f"{owner}: is self-intersecting (edges {crossing[0]} and {crossing[1]} cross)"
+        )
     ox, oy = pts[0]
     rel = [(x - ox, y - oy) for x, y in pts]
     scale = max(max(abs(x), abs(y)) for x, y in rel)
@@ -125,6 +132,55 @@ def polygon_properties(points: Sequence, owner: str = "polygon"):
     centroid = (ox + centroid_rel[0], oy + centroid_rel[1])
     bounding_radius = max(math.hypot(x, y) for x, y in local)
     return centroid, tuple(local), 0.5 * abs(twice_area), inertia_per_mass, bounding_radius
+
+
+def _edges_crossing(pts):
+    """The first pair of non-adjacent edges ``(k, m)`` that intersect, or None.
+
+    Edge ``k`` runs from vertex ``k`` to vertex ``k + 1``. Exact orientation
+    tests on the given coordinates; touching counts as crossing.
+    """
+    n = len(pts)
+
+    def orient(a, b, c):
+        value = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+        return (value > 0) - (value < 0)
+
+    def on_segment(a, b, c):
+        return min(a[0], b[0]) <= c[0] <= max(a[0], b[0]) and min(a[1], b[1]) <= c[1] <= max(a[1], b[1])
+
+    for k in range(n):
+        a, b = pts[k], pts[(k + 1) % n]
+        for m in range(k + 2, n):
+            if k == 0 and m == n - 1:
+                continue  # adjacent through the closing vertex
+            c, d = pts[m], pts[(m + 1) % n]
+            o1, o2, o3, o4 = orient(a, b, c), orient(a, b, d), orient(c, d, a), orient(c, d, b)
+            if o1 != o2 and o3 != o4:
+                return k, m
+            if (o1 == 0 and on_segment(a, b, c)) or (o2 == 0 and on_segment(a, b, d)):
+                if not (o1 == o2 == o3 == o4 == 0 and not _overlap_1d(a, b, c, d)):
+                    return k, m
+            if (o3 == 0 and on_segment(c, d, a)) or (o4 == 0 and on_segment(c, d, b)):
+                return k, m
+    return None
+
+
+def _collinear(pts) -> bool:
+    """Whether all points lie on one line (relative to their spread)."""
+    ox, oy = pts[0]
+    far = max(pts, key=lambda p: (p[0] - ox) ** 2 + (p[1] - oy) ** 2)
+    dx, dy = far[0] - ox, far[1] - oy
+    scale = dx * dx + dy * dy
+    return all(abs(dx * (y - oy) - dy * (x - ox)) <= 1e-12 * scale for x, y in pts)
+
+
+def _overlap_1d(a, b, c, d) -> bool:
+    """Whether collinear segments ab and cd share a point."""
+    axis = 0 if abs(b[0] - a[0]) + abs(d[0] - c[0]) > 0 else 1
+    lo1, hi1 = sorted((a[axis], b[axis]))
+    lo2, hi2 = sorted((c[axis], d[axis]))
+    return lo1 <= hi2 and lo2 <= hi1
 
 
 def rotate_points(points: Sequence[Vec], angle: float) -> tuple[Vec, ...]:

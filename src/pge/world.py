@@ -11,6 +11,7 @@ and calls user callbacks.
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Callable, Iterator
 
 import numpy as np
@@ -243,7 +244,7 @@ class World:
         unknown = set(options) - _OPTIONS
         if unknown:
             raise TypeError(f"{owner}: unknown option(s) {sorted(unknown)}")
-        fixed = bool(options.get("fixed", False))
+        fixed = _check_flag(owner, "fixed", options.get("fixed", False))
         mass = options.get("mass")
         if mass is not None:
             mass = _positive(owner, "mass", mass)
@@ -501,7 +502,7 @@ class World:
         i = body.id
         state = self._state
         F, I = state.F, state.I
-        fixed = bool(fixed)
+        fixed = _check_flag(body.label(), "fixed", fixed)
         if fixed == bool(I[i, L.FIXED]):
             return
         released = self._release(i)
@@ -599,6 +600,8 @@ class World:
         Yields ``Collision``, ``Timer`` and ``Frame`` records, then a ``Stop``
         at ``until`` (none if ``until`` is infinite and the queue runs dry).
         """
+        if isinstance(until, bool) or not isinstance(until, numbers.Real):
+            raise TypeError(f"events: until must be a number, got {type(until).__name__} {until!r}")
         until = float(until)
         if math.isnan(until) or until < self.time:
             raise ValueError(f"events: until must be a time not before now, got {until!r}")
@@ -843,6 +846,12 @@ def _positive(owner: str, what: str, value) -> float:
     if value <= 0.0:
         raise ValueError(f"{owner}: {what} must be positive, got {value!r}")
     return value
+
+
+def _check_flag(owner: str, what: str, value) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{owner}: {what} must be True or False, got {type(value).__name__} {value!r}")
+    return bool(value)
 
 
 def _check_friction(owner: str, value) -> float:

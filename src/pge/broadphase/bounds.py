@@ -18,6 +18,9 @@ from numba import njit
 
 #: relative safety factor against rounding in the bounds below.
 SAFETY = 1.0 + 1e-9
+#: longest horizon given to a moving body, in seconds: keeps the arithmetic finite for
+#: bodies that crawl (a subnormal speed would otherwise give an infinite horizon).
+MAX_HORIZON = 1e9
 
 
 @njit(cache=True)

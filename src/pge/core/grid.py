@@ -19,7 +19,7 @@ from pge.core import layout as L
 def cell_index(P, value, origin, count):
     """Clamped cell index along one axis."""
     f = (value - origin) * P[L.INV_CELL]
-    if f <= 0.0:
+    if not f > 0.0:
         return 0
     if f >= count - 1:
         return count - 1

@@ -160,7 +160,7 @@ class EngineState:
 
     def _cell(self, value: float, origin: float, count: int) -> int:
         f = (value - origin) * self.P[L.INV_CELL]
-        if f <= 0.0:
+        if not f > 0.0:
             return 0
         if f >= count - 1:
             return count - 1

@@ -122,20 +122,56 @@ def polygon_polygon(dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, start_b, 
 
 
 @njit(cache=True)
-def polygon_polygon_contact(ax, ay, bx, by, outline, start_a, n_a, start_b, n_b, feature):
-    """Contact point (the striking vertex) and unit normal (from b towards a).
-
-    ``(ax, ay)`` and ``(bx, by)`` are the centroids at the contact time.
-    Returns ``(point_x, point_y, normal_x, normal_y)``.
-    """
-    if feature < n_b:
-        row = start_b + feature
-        mx = outline[row, 2]
-        my = outline[row, 3]
-        s = start_a + _support(outline, start_a, n_a, mx, my)
-        return ax + outline[s, 0], ay + outline[s, 1], mx, my
-    row = start_a + feature - n_b
+def _face_contact(outline, start_e, n_e, edge, ex, ey, start_o, n_o, ox, oy):
+    """Contact point of polygon o (centroid ``(ox, oy)``) touching edge ``edge`` of polygon
+    e (centroid ``(ex, ey)``): o's nearest vertex, or the middle of the overlap when an
+    edge of o lies along the edge."""
+    row = start_e + edge
     nx = outline[row, 2]
     ny = outline[row, 3]
-    s = start_b + _support(outline, start_b, n_b, nx, ny)
-    return bx + outline[s, 0], by + outline[s, 1], -nx, -ny
+    tx = -ny
+    ty = nx
+    qx = ex + outline[row, 0]
+    qy = ey + outline[row, 1]
+    length = outline[row, 4]
+    lowest = _INF
+    for k in range(n_o):
+        lowest = min(lowest, nx * outline[start_o + k, 0] + ny * outline[start_o + k, 1])
+    reach = 0.0
+    for k in range(n_o):
+        reach = max(reach, math.hypot(outline[start_o + k, 0], outline[start_o + k, 1]))
+    tolerance = 1e-9 * reach
+    low = _INF
+    high = -_INF
+    for k in range(n_o):
+        vx = outline[start_o + k, 0]
+        vy = outline[start_o + k, 1]
+        if nx * vx + ny * vy <= lowest + tolerance:
+            u = (ox + vx - qx) * tx + (oy + vy - qy) * ty
+            low = min(low, u)
+            high = max(high, u)
+    low = max(low, 0.0)
+    high = min(high, length)
+    u = 0.5 * (low + high) if low <= high else (low if low > length else high)
+    return qx + u * tx, qy + u * ty
+
+
+@njit(cache=True)
+def polygon_polygon_contact(ax, ay, bx, by, outline, start_a, n_a, start_b, n_b, feature):
+    """Contact point and unit normal (pointing from b towards a).
+
+    ``(ax, ay)`` and ``(bx, by)`` are the centroids at the contact time. The
+    point lies on the struck edge: the striking vertex, or the middle of the
+    shared stretch when two edges meet flat. Returns
+    ``(point_x, point_y, normal_x, normal_y)``.
+    """
+    if feature < n_b:
+        mx = outline[start_b + feature, 2]
+        my = outline[start_b + feature, 3]
+        px, py = _face_contact(outline, start_b, n_b, feature, bx, by, start_a, n_a, ax, ay)
+        return px, py, mx, my
+    edge = feature - n_b
+    nx = outline[start_a + edge, 2]
+    ny = outline[start_a + edge, 3]
+    px, py = _face_contact(outline, start_a, n_a, edge, ax, ay, start_b, n_b, bx, by)
+    return px, py, -nx, -ny
