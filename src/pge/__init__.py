@@ -5,6 +5,7 @@ polygons moving under constant accelerations, and every collision is found at
 its exact time.
 """
 
+from pge import _jit_cache  # noqa: F401  (must come first: it configures the kernel cache)
 from pge.bodies import Body
 from pge.events import Collision, Frame, Stop, Timer
 from pge.shapes import Circle, Polygon
