@@ -29,7 +29,7 @@ import math
 from numba import njit
 
 from pge.core import layout as L
-from pge.core.motion import state_at
+from pge.core.motion import advance, state_at
 from pge.core.queue import push
 from pge.numerics.roots import first_descent_quadratic
 
@@ -205,7 +205,7 @@ def release_riders(S, s, out, count, t):
     while k < count:
         r = out[k]
         k += 1
-        advance_to(F, r, t)
+        advance(F, r, t)
         child = I[r, L.RIDER_HEAD]
         while child >= 0:
             out[count] = child
@@ -214,19 +214,6 @@ def release_riders(S, s, out, count, t):
         detach(S, r)
         stats[L.S_RELEASES] += 1
     return count
-
-
-@njit(cache=True, inline="always")
-def advance_to(F, i, t):
-    dt = t - F[i, L.T0]
-    if dt != 0.0:
-        ax = F[i, L.AX]
-        ay = F[i, L.AY]
-        F[i, L.X] += (F[i, L.VX] + 0.5 * ax * dt) * dt
-        F[i, L.Y] += (F[i, L.VY] + 0.5 * ay * dt) * dt
-        F[i, L.VX] += ax * dt
-        F[i, L.VY] += ay * dt
-        F[i, L.T0] = t
 
 
 @njit(cache=True)
