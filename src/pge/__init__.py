@@ -1,16 +1,171 @@
 """pge: a predictive 2D physics and game engine.
 
-The modern entry point is ``pge.World``; bodies are circles and convex
-polygons moving under constant accelerations, and every collision is found at
-its exact time.
+Two front doors to one engine:
+
+* ``pge.World``: the modern API. Bodies are circles and convex polygons
+  moving under constant accelerations, and every collision is found at its
+  exact time.
+* The classic PGE API (``pge.circle``, ``pge.run``, ...), compatible with
+  Gaius Mulley's PGE and implemented in ``pge.classic`` over ``pge.World``.
+  ``pge.framesPerSecond`` follows ``pge.fps()``, as the original's module
+  variable did.
 """
 
 from pge import _jit_cache  # noqa: F401  (must come first: it configures the kernel cache)
+from pge import classic as _classic
 from pge.bodies import Body
+from pge.classic import (  # the classic PGE names: pge.classic.PGE_NAMES
+    Black,
+    at_cancel,
+    at_time,
+    batch,
+    batch_d,
+    box,
+    box_t,
+    circle,
+    circle_t,
+    collision_colour,
+    collision_event,
+    colour_t,
+    delay,
+    deregister_handler,
+    display_fullscreen,
+    display_set_mode,
+    draw_collision,
+    dump_world,
+    elasticity,
+    fb_box_t,
+    fb_circle_t,
+    fb_text_t,
+    final_event,
+    finish_record,
+    flip,
+    fps,
+    frame_event,
+    function_event,
+    get_font,
+    get_frame_no,
+    get_time,
+    gravity,
+    interactive,
+    local_fps,
+    magnitude,
+    message,
+    no_event,
+    normalise,
+    play,
+    poly3,
+    poly4,
+    poly5,
+    poly6,
+    polygon,
+    program_name,
+    pyg_d,
+    pyg_to_unit_coord,
+    record,
+    register_handler,
+    rgb,
+    run,
+    runbatch,
+    runpy,
+    slow_down,
+    spring,
+    spring_event,
+    spring_t,
+    sub_coord,
+    text,
+    toFloat,
+    update_fps,
+    version_number,
+    white,
+)
+from pge.classic import event as event  # class pge.event: not in __all__ (see pge.classic.__all__)
+from pge.classic import object as object  # class pge.object: not in __all__ (see pge.classic.__all__)
 from pge.events import Collision, Frame, Stop, Timer
 from pge.shapes import Circle, Polygon
 from pge.world import World
 
 __version__ = "0.1.0"
 
-__all__ = ["World", "Body", "Circle", "Polygon", "Collision", "Timer", "Frame", "Stop", "__version__"]
+__all__ = [
+    "World",
+    "Body",
+    "Circle",
+    "Polygon",
+    "Collision",
+    "Timer",
+    "Frame",
+    "Stop",
+    "__version__",
+    # the classic PGE API, as pge.classic.__all__ (without the classes object and event)
+    "batch",
+    "interactive",
+    "display_set_mode",
+    "display_fullscreen",
+    "fps",
+    "slow_down",
+    "gravity",
+    "record",
+    "finish_record",
+    "rgb",
+    "white",
+    "box",
+    "poly3",
+    "poly4",
+    "circle",
+    "text",
+    "spring",
+    "run",
+    "runpy",
+    "runbatch",
+    "at_time",
+    "at_cancel",
+    "register_handler",
+    "deregister_handler",
+    "get_frame_no",
+    "local_fps",
+    "update_fps",
+    "delay",
+    "draw_collision",
+    "collision_colour",
+    "dump_world",
+    "play",
+    "message",
+    "get_font",
+    "flip",
+    "pyg_to_unit_coord",
+    "normalise",
+    "magnitude",
+    "sub_coord",
+    "toFloat",
+    "colour_t",
+    "box_t",
+    "circle_t",
+    "spring_t",
+    "fb_box_t",
+    "fb_circle_t",
+    "fb_text_t",
+    "batch_d",
+    "pyg_d",
+    "no_event",
+    "frame_event",
+    "collision_event",
+    "function_event",
+    "spring_event",
+    "final_event",
+    "program_name",
+    "version_number",
+    "framesPerSecond",
+    "Black",
+    "poly5",
+    "poly6",
+    "polygon",
+    "elasticity",
+    "get_time",
+]
+
+
+def __getattr__(name):
+    if name == "framesPerSecond":
+        return _classic._STATE.fps
+    raise AttributeError(f"module 'pge' has no attribute {name!r}")

@@ -175,6 +175,9 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no summary line")
     export.set_defaults(handler=_export)
 
+    from pge.classic.script import add_run_command
+
+    add_run_command(commands)
     return parser
 
 

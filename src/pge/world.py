@@ -165,6 +165,15 @@ class World:
             self._push_frame(1)
 
     @property
+    def elasticity(self) -> float:
+        """Default elasticity given to new bodies; assignable (existing bodies keep theirs)."""
+        return self._default_elasticity
+
+    @elasticity.setter
+    def elasticity(self, value) -> None:
+        self._default_elasticity = _check_elasticity("World", value)
+
+    @property
     def bounds(self) -> tuple[float, float, float, float]:
         """The region ``(x0, y0, x1, y1)`` covered by the broad-phase grid (and drawn by default)."""
         return self._bounds
@@ -541,6 +550,29 @@ class World:
             self._state.I[i, L.NOTIFY] = 1
         return callback
 
+    def off_collision(self, callback: Callable, body: Body | None = None) -> bool:
+        """Unregister a collision callback given to ``on_collision`` (with the same ``body``);
+        True if it was registered."""
+        if body is None:
+            callbacks = self._collision_callbacks
+        else:
+            i = self._own(body).id
+            callbacks = self._body_callbacks.get(i, [])
+        if callback not in callbacks:
+            return False
+        callbacks.remove(callback)
+        if body is not None and not callbacks:
+            self._body_callbacks.pop(body.id, None)
+            self._state.I[body.id, L.NOTIFY] = 0
+        return True
+
+    def off_frame(self, callback: Callable) -> bool:
+        """Unregister a frame callback; True if it was registered."""
+        if callback not in self._frame_callbacks:
+            return False
+        self._frame_callbacks.remove(callback)
+        return True
+
     def on_frame(self, callback: Callable) -> Callable:
         """Call ``callback(frame)`` at every FRAME event (see ``frame_rate``)."""
         if not callable(callback):
@@ -809,6 +841,28 @@ class World:
                     found.append((self._handles[i], self._handles[j], depth))
             active.append(span)
         return found
+
+    def positions(self, bodies=None) -> np.ndarray:
+        """Positions now of ``bodies`` (default: all, in creation order) as an (n, 2) array.
+
+        Evaluated in closed form in bulk: the fast way to sample many bodies
+        for drawing or recording.
+        """
+        if bodies is None:
+            ids = np.fromiter(self._handles, dtype=np.int64, count=len(self._handles))
+        else:
+            ids = np.array([self._own(body).id for body in bodies], dtype=np.int64)
+        return self._positions_of(ids)
+
+    def _positions_of(self, ids: np.ndarray) -> np.ndarray:
+        """``positions`` for body ids already known to be live (no checks: for samplers
+        that hold a fixed list of bodies and re-check it when bodies change)."""
+        F = self._state.F
+        dt = self.time - F[ids, L.T0]
+        out = np.empty((ids.shape[0], 2))
+        out[:, 0] = F[ids, L.X] + (F[ids, L.VX] + 0.5 * F[ids, L.AX] * dt) * dt
+        out[:, 1] = F[ids, L.Y] + (F[ids, L.VY] + 0.5 * F[ids, L.AY] * dt) * dt
+        return out
 
     def kinetic_energy(self) -> float:
         """Total translational kinetic energy of the moving bodies now."""

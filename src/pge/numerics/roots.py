@@ -8,6 +8,8 @@ touch or overlap. The functions here answer "when does the gap first close?":
 
 * ``quadratic_roots`` is the numerically stable quadratic formula (no
   cancellation between ``-b`` and the square root).
+* ``compensated_evaluate`` evaluates a polynomial as if in twice the working
+  precision, with a rigorous error bound; it certifies the sign of the gap.
 * ``first_descent`` finds the earliest time at which a gap polynomial passes
   from positive to non-positive. It isolates roots first: the critical points
   of ``p`` (roots of the cubic ``p'``, themselves isolated by the closed-form
@@ -24,8 +26,12 @@ until it has become positive and closes anew. Rounding can therefore neither
 lose a contact nor start an endless loop of zero-time contacts.
 
 Refinement keeps a bracket ``[lo, hi]`` with ``p(lo) > 0 >= p(hi)`` until its
-ends are adjacent floating-point numbers and returns ``lo``, so a returned
-time is never later than the exact root. "No root" is ``math.inf``.
+ends are adjacent floating-point numbers. A plainly computed ``p(lo) > 0``
+could still be rounding noise, so every answer (refined or from the quadratic
+formula) is finally certified: the gap there, evaluated by compensated Horner
+with an error bound, must be certainly positive, else the time steps back. A
+returned time is therefore never later than the exact root. "No root" is
+``math.inf``.
 
 All functions are compiled with Numba (``cache=True``) and can be called from
 Python as well as from other compiled code; none is recursive.
@@ -40,6 +46,7 @@ from numba import njit
 
 __all__ = [
     "evaluate",
+    "compensated_evaluate",
     "quadratic_roots",
     "first_descent_quadratic",
     "first_descent",
@@ -54,6 +61,82 @@ _INF = math.inf
 def evaluate(c0, c1, c2, c3, c4, t):
     """Value of ``c0 + c1 t + c2 t^2 + c3 t^3 + c4 t^4`` (Horner's rule)."""
     return (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+
+
+_UNIT = 2.0**-53  # unit roundoff of binary64
+_SPLITTER = 134217729.0  # 2^27 + 1, Veltkamp's splitting constant
+
+
+@njit(cache=True, inline="always")
+def _two_sum(a, b):
+    """``a + b`` as a float and its exact rounding error (Knuth)."""
+    s = a + b
+    z = s - a
+    return s, (a - (s - z)) + (b - z)
+
+
+@njit(cache=True, inline="always")
+def _two_product(a, b):
+    """``a * b`` as a float and its exact rounding error (Dekker, without FMA)."""
+    p = a * b
+    c = _SPLITTER * a
+    ah = c - (c - a)
+    al = a - ah
+    c = _SPLITTER * b
+    bh = c - (c - b)
+    bl = b - bh
+    return p, al * bl - (((p - ah * bh) - al * bh) - ah * bl)
+
+
+@njit(cache=True)
+def compensated_evaluate(c0, c1, c2, c3, c4, t):
+    """``p(t)`` by compensated Horner (as if in twice the precision) and an error bound.
+
+    Returns ``(value, bound)`` with ``|value - p(t)| <= bound``, where
+    ``bound = 2u|value| + (8u)^2 sum |c_k t^k|`` (Graillat, Langlois and
+    Louvet's bound, rounded up), or 0 when no operation rounded at all.
+    """
+    s = c4
+    r = 0.0
+    x = abs(t)
+    magnitude = abs(c4)
+    exact = True
+    for c in (c3, c2, c1, c0):
+        p, pi = _two_product(s, t)
+        s, sigma = _two_sum(p, c)
+        if pi != 0.0 or sigma != 0.0:
+            exact = False
+        r = r * t + (pi + sigma)
+        magnitude = magnitude * x + abs(c)
+    if exact:
+        return s, 0.0  # no operation rounded: the value is exact
+    value = s + r
+    gamma = 8.0 * _UNIT / (1.0 - 8.0 * _UNIT)
+    return value, 2.0 * _UNIT * abs(value) + 2.0 * gamma * gamma * magnitude
+
+
+@njit(cache=True)
+def _not_late(t, c0, c1, c2, c3, c4, floor):
+    """Step a computed root ``t`` back until the gap is certainly not negative there.
+
+    The gap is evaluated by compensated Horner with a rigorous error bound; if
+    it is not certainly positive, ``t`` moves back by the deficit over the
+    slope (at least two ulps) and is checked again. A well-conditioned root is
+    thus returned at most a few ulps early and never late. Never below
+    ``floor``.
+    """
+    for _ in range(16):
+        if t <= floor:
+            return floor
+        value, bound = compensated_evaluate(c0, c1, c2, c3, c4, t)
+        if value >= bound:
+            return t  # the exact gap is certainly >= 0 here
+        slope = abs(((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1)
+        step = 2.0 * np.spacing(abs(t))
+        if slope > 0.0:
+            step = max(step, 2.0 * (bound - value) / slope)
+        t -= step
+    return t if t > floor else floor
 
 
 @njit(cache=True)
@@ -104,11 +187,11 @@ def first_descent_quadratic(c0, c1, c2, horizon, immediate):
         if disc <= 0.0:
             return _INF
         t = (c1 + math.sqrt(disc)) / (-2.0 * c2)
-        return t if t <= horizon else _INF
+        return _not_late(t, c0, c1, c2, 0.0, 0.0, 0.0) if t <= horizon else _INF
     if c2 == 0.0:
         if c1 < 0.0:
             t = -c0 / c1
-            return t if t <= horizon else _INF
+            return _not_late(t, c0, c1, 0.0, 0.0, 0.0, 0.0) if t <= horizon else _INF
         return _INF
     if c2 > 0.0:
         if c1 >= 0.0:
@@ -117,14 +200,14 @@ def first_descent_quadratic(c0, c1, c2, horizon, immediate):
         if disc < 0.0:
             return _INF
         t = 2.0 * c0 / (math.sqrt(disc) - c1)
-        return t if t <= horizon else _INF
+        return _not_late(t, c0, c1, c2, 0.0, 0.0, 0.0) if t <= horizon else _INF
     # c2 < 0 < c0: exactly one positive root, where the gap descends.
     sq = math.sqrt(c1 * c1 - 4.0 * c2 * c0)
     if c1 < 0.0:
         t = 2.0 * c0 / (sq - c1)
     else:
         t = (c1 + sq) / (-2.0 * c2)
-    return t if t <= horizon else _INF
+    return _not_late(t, c0, c1, c2, 0.0, 0.0, 0.0) if t <= horizon else _INF
 
 
 @njit(cache=True)
@@ -218,9 +301,10 @@ def first_descent(c0, c1, c2, c3, c4, horizon, immediate):
     With ``immediate`` true, a gap already non-positive and decreasing at 0
     (first derivative negative, or zero with a negative second) gives 0.0. Otherwise the answer is the first passage from ``p > 0`` to
     ``p <= 0``: root isolation on the monotone pieces between the critical
-    points, then safeguarded refinement. Never later than the exact root, at
-    most one floating-point step earlier. Returns inf if the gap does not
-    close within ``[0, horizon]``.
+    points, safeguarded refinement, then certification by compensated
+    evaluation (``_not_late``). Never later than the exact root; a few ulps
+    earlier for a well-conditioned root. Returns inf if the gap does not close
+    within ``[0, horizon]``.
     """
     if c4 == 0.0 and c3 == 0.0:
         return first_descent_quadratic(c0, c1, c2, horizon, immediate)
@@ -237,6 +321,7 @@ def first_descent(c0, c1, c2, c3, c4, horizon, immediate):
         right = breaks[k]
         p_right = evaluate(c0, c1, c2, c3, c4, right)
         if p_left > 0.0 and p_right <= 0.0:
-            return _refine(c0, c1, c2, c3, c4, left, right, p_left, p_right)
+            t = _refine(c0, c1, c2, c3, c4, left, right, p_left, p_right)
+            return _not_late(t, c0, c1, c2, c3, c4, 0.0)
         left, p_left = right, p_right
     return _INF
