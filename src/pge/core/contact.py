@@ -162,7 +162,7 @@ def try_rest(S, r, s, mx, my, owner, edge, t):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def detach(S, r):
     """Take rider ``r`` off its support's rider list and give it its free acceleration."""
     F = S[0]
@@ -185,7 +185,7 @@ def detach(S, r):
     F[r, L.AY] = F[r, L.FREE_AY]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def release_riders(S, s, out, count, t):
     """Release every body resting on ``s``, directly or through others.
 

@@ -43,7 +43,7 @@ CIRCLE = 0
 # ---------------------------------------------------------------- work list
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def queue_prediction(S, i):
     """Ask for body ``i`` to be predicted again before the next event."""
     Q = S[4]
@@ -75,7 +75,7 @@ def drain_predictions(S):
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def touch(S, i):
     """Body ``i``'s motion or shape changed now: invalidate its events, renew its box and
     contact event, and queue it for prediction."""

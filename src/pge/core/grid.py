@@ -26,7 +26,7 @@ def cell_index(P, value, origin, count):
     return int(f)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def unlink(S, i):
     """Take moving body ``i`` out of its cell's list (no-op if it is in none)."""
     I = S[1]
@@ -45,7 +45,7 @@ def unlink(S, i):
     I[i, L.CELL] = -1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def file_in_cell(S, i):
     """Put moving body ``i`` in the cell of its box's lower-left corner."""
     F = S[0]

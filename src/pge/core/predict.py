@@ -28,7 +28,7 @@ _INF = math.inf
 CIRCLE = 0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def place(S, i):
     """Give body ``i`` a horizon and a swept box from now; file a moving body in the grid."""
     F = S[0]

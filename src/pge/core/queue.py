@@ -28,7 +28,7 @@ def _earlier(slot_time, slot_key, s1, s2):
     return s1 < s2
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def push(S, t, key, a, b, count_a, count_b, feature):
     """Queue an event; the caller guarantees a free slot (``Q[MIN_FREE]``)."""
     Q = S[4]
@@ -59,7 +59,7 @@ def push(S, t, key, a, b, count_a, count_b, feature):
     heap[i] = slot
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def pop_earliest(S):
     """Remove the earliest slot from the heap, put it back on the free list, return it.
 
