@@ -1,4 +1,4 @@
-"""The ``pge`` command line: showcase, info, export.
+"""The ``pge`` command line: showcase, info, play, export, run.
 
 Every failure the user can cause (missing file, a file that is not a
 recording, a damaged recording, bad options) ends with one line
@@ -120,6 +120,41 @@ def _export(args) -> int:
     return 0
 
 
+_PLAY_KEYS = """\
+keys:
+  space              pause / resume (at the end: play again from the start)
+  right, left        pause and step one frame forwards / backwards
+  up, down           seek 10 frames forwards / backwards (page up, page down: 100)
+  home, end          first / last frame
+  +, -               double / halve the speed (1/64x to 64x)
+  escape, q          quit
+
+examples:
+  pge play run.pgerec                       play at the recorded speed
+  pge play run.pgerec --speed 0.25 --start 2
+  pge play output.raw --size 1024x768
+"""
+
+
+def _play(args) -> int:
+    from pge.classic.session import is_headless
+    from pge.playback import play
+
+    recording = _open(args)
+    headless = args.headless or is_headless()
+    summary = play(
+        recording,
+        speed=args.speed,
+        start_time=args.start,
+        size=args.size,
+        fullscreen=args.fullscreen,
+        headless=headless,
+    )
+    if headless:
+        print(summary.line(recording))
+    return 0
+
+
 def _add_file(command) -> None:
     command.add_argument("file", metavar="FILE", help="a pge recording (.pgerec) or an original PGE output.raw")
     command.add_argument(
@@ -149,6 +184,33 @@ def build_parser() -> argparse.ArgumentParser:
     )
     _add_file(info)
     info.set_defaults(handler=_info)
+
+    play = commands.add_parser(
+        "play",
+        help="play a recording in a window (pause, step, seek, speed, event list)",
+        description="Play a recording in a window at its recorded speed, or faster or slower, with the "
+        "latest collisions and timers listed on screen. With --headless (or PGE_HEADLESS=1) there is no "
+        "window and no waiting: every frame is drawn once off screen and a summary line is printed.",
+        epilog=_PLAY_KEYS,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    _add_file(play)
+    play.add_argument(
+        "--speed", type=_positive, default=1.0, help="simulated seconds per wall-clock second (default: 1, 1/64 to 64)"
+    )
+    play.add_argument(
+        "--start", type=_time, default=None, metavar="T", help="start at the frame shown at time T seconds"
+    )
+    play.add_argument(
+        "--size",
+        type=_size,
+        default=None,
+        metavar="WxH",
+        help="window size in pixels (default: 800 on the longer side)",
+    )
+    play.add_argument("--fullscreen", action="store_true", help="play full screen")
+    play.add_argument("--headless", action="store_true", help="no window: walk every frame and print a summary")
+    play.set_defaults(handler=_play)
 
     export = commands.add_parser(
         "export",

@@ -49,6 +49,7 @@ __all__ = [
     "save_frame",
     "RECORDING_NAME",
     "BATCH_SECONDS",
+    "run_options",
 ]
 
 #: the file ``record()`` writes, in the working directory.
@@ -143,8 +144,8 @@ def get_time() -> float:
 
 
 def record() -> None:
-    """Record the simulation into ``output.pgerec`` in the working directory, from the next
-    ``run()`` on (nothing is written unless this is called)."""
+    """Record the simulation into ``output.pgerec`` in the working directory (or the file given
+    to ``run_options``), from the next ``run()`` on (nothing is written unless this is called)."""
     STATE.record_requested = True
     if STATE.depth > 0 and STATE.recorder is None:
         _start_recording()
@@ -164,8 +165,8 @@ def _start_recording() -> None:
     world = STATE.world
     if world.frame_rate != STATE.fps:
         world.frame_rate = STATE.fps
-    STATE.record_path = RECORDING_NAME
-    STATE.recorder = Recorder(world, RECORDING_NAME)
+    STATE.record_path = STATE.record_target or RECORDING_NAME
+    STATE.recorder = Recorder(world, STATE.record_path)
 
 
 @atexit.register
@@ -175,6 +176,27 @@ def _close_recording() -> None:
 
 
 # ---------------------------------------------------------------- running
+
+
+def run_options(record=None, until=None) -> None:
+    """Settings a runner imposes on a script (``pge run --record FILE --until T``); not a PGE name.
+
+    ``record``: record to this file, as if the script had called ``record()``
+    (a ``record()`` of the script writes there too). ``until``: no ``run()``
+    goes past simulated time ``until`` seconds, whatever the script asks for:
+    the run that reaches it returns there and the script goes on (to print its
+    results, say); a later ``run()`` ends the script with ``SystemExit(0)``, so a
+    game that calls ``run()`` in a loop stops too. ``None`` leaves a setting as
+    it is; ``reset()`` clears both.
+    """
+    if until is not None:
+        until = finite("run_options", "until", until)
+        if until < 0.0:
+            raise ValueError(f"run_options: until must not be negative, got {until!r}")
+        STATE.until = until
+    if record is not None:
+        STATE.record_target = str(record)
+        STATE.record_requested = True  # what record() does outside a run
 
 
 def run(t=-1) -> None:
@@ -238,6 +260,9 @@ def _start(name: str):
 
 
 def _go(world, end: float, windowed: bool) -> None:
+    if end > world.time >= STATE.until:
+        raise SystemExit(0)  # the runner's limit (run_options) was reached: the simulation is over
+    end = min(end, STATE.until)
     STATE.running = True
     STATE.windowed = windowed
     try:

@@ -52,6 +52,8 @@ class Session:
         self.record_requested = False
         self.recorder = None
         self.record_path = None
+        self.record_target = None  # file record() writes (None: runloop.RECORDING_NAME); `pge run --record`
+        self.until = float("inf")  # simulated time no run() goes past; `pge run --until`
         self.display = None  # a pge.render protocol object while a window is open
         self.pacer = None
         self.running = False

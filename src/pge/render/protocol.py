@@ -51,6 +51,10 @@ class Display(Protocol):
     def is_quit(self, event) -> bool:
         """True for a request to close the window."""
 
+    def key_name(self, event) -> str | None:
+        """The name of the key pressed, as ``pygame.key.name`` spells it (``"space"``,
+        ``"left"``, ``"page up"``, ``"q"``), for a key-press event; None for any other event."""
+
     def close(self) -> None:
         """Release the backend (close the window)."""
 
@@ -83,6 +87,9 @@ class NullDisplay:
 
     def is_quit(self, event) -> bool:
         return False
+
+    def key_name(self, event) -> str | None:
+        return None
 
     def close(self) -> None:
         pass

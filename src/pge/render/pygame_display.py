@@ -164,6 +164,11 @@ class PygameDisplay:
     def is_quit(self, event) -> bool:
         return event.type == pygame.QUIT
 
+    def key_name(self, event) -> str | None:
+        if event.type != pygame.KEYDOWN:
+            return None
+        return pygame.key.name(event.key)
+
     def play(self, name: str) -> None:
         """Play the sound file ``name``; raises OSError if it cannot be loaded."""
         if self._mixer is None:
