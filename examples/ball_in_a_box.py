@@ -7,9 +7,9 @@ argument order ``(obj, event)``, ``event.collision_between()`` and
 
 Everything has elasticity 1 (``pge.elasticity(1.0)``), so the balls never come
 to rest: energy is conserved exactly by the engine, which the summary checks.
-(With an elasticity below 1 a ball would settle on the floor, and until the
-engine's resting contact arrives that means infinitely many ever smaller
-bounces.)
+(With an elasticity below 1 a ball settles on the floor: once its bounces are
+lower than the engine's rest height it rests and slides instead of bouncing
+ever more often.)
 
 Run it in a window with ``python examples/ball_in_a_box.py`` (ESC quits), or
 headless with ``PGE_HEADLESS=1 python examples/ball_in_a_box.py``. At the end it

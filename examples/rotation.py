@@ -10,8 +10,7 @@ Also shown: poly3, poly5, poly6 and ``polygon(points, colour)``, fixed ramps
 tilted with ``rotate``, a per-object elasticity.
 
 Under gravity with elasticity 1 nothing settles; the one box with elasticity
-0.99 would need about a minute of ever smaller bounces to settle, and the run
-lasts 8 seconds. The ``RESULT`` line gives
+0.99 loses energy slowly and is still bouncing when the 8-second run ends. The ``RESULT`` line gives
 the collision count, whether every angle and angular velocity reads back as
 set, and whether every body is still inside the room.
 """
