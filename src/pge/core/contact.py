@@ -266,16 +266,7 @@ def schedule_contact_event(S, r):
     now = P[L.TIME]
     best = _INF
     what = L.LEAVE
-    if I[r, L.EDGE_OWNER] == CURVED_STEPPING:
-        s = I[r, L.SUPPORT]
-        vt, _, _ = relative_tangential(S, r, now)
-        half_at = 0.5 * (-(F[r, L.AX] - F[s, L.AX]) * F[r, L.REST_NY] + (F[r, L.AY] - F[s, L.AY]) * F[r, L.REST_NX])
-        step = CURVED_STEP * F[r, L.REACH]
-        best = min(
-            first_descent_quadratic(step, -vt, -half_at, _INF, False),
-            first_descent_quadratic(step, vt, half_at, _INF, False),
-        )
-    elif I[r, L.EDGE_OWNER] >= 0:
+    if I[r, L.EDGE_OWNER] >= 0:
         low, high, length, tx, ty, other, owner = _contact_span(S, r, now)
         _, _, ovx, ovy = state_at(F, other, now)
         _, _, wvx, wvy = state_at(F, owner, now)
@@ -285,9 +276,26 @@ def schedule_contact_event(S, r):
             best = 0.0
         else:
             best = min(
-                first_descent_quadratic(high, dv, da, _INF, False),
-                first_descent_quadratic(length - low, -dv, -da, _INF, False),
+                first_descent_quadratic(high, dv, da, _INF, True),
+                first_descent_quadratic(length - low, -dv, -da, _INF, True),
             )
+        if best == 0.0 and I[other, L.KIND] == 0:
+            # A circle at the very end of its edge, moving off. Fast enough to clear the
+            # corner (v^2 >= a_n R) it flies; slower, the corner carries it on as a
+            # curved contact (leaving at once would only bring it straight back).
+            vt, _, an = relative_tangential(S, r, now)
+            if vt * vt < -an * F[other, L.RADIUS]:
+                I[r, L.EDGE_OWNER] = CURVED_STEPPING
+                best = _INF
+    if I[r, L.EDGE_OWNER] == CURVED_STEPPING:
+        s = I[r, L.SUPPORT]
+        vt, _, _ = relative_tangential(S, r, now)
+        half_at = 0.5 * (-(F[r, L.AX] - F[s, L.AX]) * F[r, L.REST_NY] + (F[r, L.AY] - F[s, L.AY]) * F[r, L.REST_NX])
+        step = CURVED_STEP * F[r, L.REACH]
+        best = min(
+            first_descent_quadratic(step, -vt, -half_at, _INF, False),
+            first_descent_quadratic(step, vt, half_at, _INF, False),
+        )
     if I[r, L.REST_MODE] == L.SLIDING:
         vt, _, _ = relative_tangential(S, r, now)
         s = I[r, L.SUPPORT]

@@ -180,8 +180,10 @@ def collide(S, a, b, feature, t):
         kb, keep_b = _give(F, I, b, -nx, -ny)
         if I[a, L.SUPPORT] >= 0 and not keep_a:
             detach(S, a)
+            S[13][L.S_RELEASES] += 1
         if I[b, L.SUPPORT] >= 0 and not keep_b:
             detach(S, b)
+            S[13][L.S_RELEASES] += 1
         if ka + kb > 0.0:
             restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
             impulse = -(1.0 + restitution) * normal_speed / (ka + kb)
@@ -223,6 +225,7 @@ def collide(S, a, b, feature, t):
         x = group[k]
         if I[x, L.SUPPORT] >= 0 and not settle_acceleration(S, x, t):
             detach(S, x)
+            S[13][L.S_RELEASES] += 1
         count = release_riders(S, x, group, count, t)
     touch_group(S, group, count)
     out[L.OUT_TIME] = t
@@ -256,6 +259,7 @@ def contact_change(S, r, what, t):
         F[r, L.VY] = F[s, L.VY]
         if not settle_acceleration(S, r, t):
             detach(S, r)
+            S[13][L.S_RELEASES] += 1
     count = release_riders(S, r, group, count, t)
     touch_group(S, group, count)
 

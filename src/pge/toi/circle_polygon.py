@@ -65,6 +65,29 @@ def closest_feature(px, py, radius, outline, start, n):
 
 
 @njit(cache=True)
+def _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny):
+    """Whether a circle touching a feature at zero normal speed is pushed into it.
+
+    On a flat edge that is the normal acceleration. Around a corner (or at the
+    end of an edge that the circle is sliding off) the path must also turn:
+    the distance's second derivative gains ``v_t^2 / R`` (centripetal), so a
+    fast enough circle flies off instead of pressing.
+    """
+    accel = nx * ax + ny * ay
+    tx = -ny
+    ty = nx
+    vt = tx * vx + ty * vy
+    curved = feature < 0
+    if not curved:
+        row = start + feature
+        u = tx * (px - outline[row, 0]) + ty * (py - outline[row, 1])
+        curved = (u >= outline[row, 4] and vt > 0.0) or (u <= 0.0 and vt < 0.0)
+    if curved:
+        accel += vt * vt / radius
+    return accel < 0.0
+
+
+@njit(cache=True)
 def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon):
     """First contact of a circle and a convex polygon within ``[0, horizon]``.
 
@@ -82,7 +105,7 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon):
     if max_s <= radius:
         feature, nx, ny, gap = closest_feature(px, py, radius, outline, start, n)
         closing = nx * vx + ny * vy
-        if gap <= 0.0 and (closing < 0.0 or (closing == 0.0 and nx * ax + ny * ay < 0.0)):
+        if gap <= 0.0 and (closing < 0.0 or (closing == 0.0 and _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny))):
             return 0.0, feature
     best_t = horizon
     best_feature = 0
