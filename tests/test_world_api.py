@@ -899,3 +899,38 @@ def test_registration_methods_return_the_callback_for_decorator_use():
         pass
 
     assert callable(hit) and hit.__name__ == "hit" and callable(frame) and frame.__name__ == "frame"
+
+
+def test_positions_in_bulk_equal_each_bodys_closed_form_position():
+    """World.positions() returns, bit for bit, every body's Body.position at the current time."""
+    world = World(gravity=(0.0, -1.0))
+    a = world.add_circle((0.2, 0.5), 0.05, mass=1.0, velocity=(0.1, 0.3))
+    b = world.add_box(0.5, 0.5, 0.1, 0.1, mass=2.0, velocity=(-0.2, 0.0))
+    world.run_until(0.37)
+    xy = world.positions()
+    assert [tuple(row) for row in xy] == [a.position, b.position]
+    assert [tuple(row) for row in world.positions([b])] == [b.position]
+
+
+def test_off_collision_unregisters_a_callback():
+    """A collision callback removed with off_collision is no longer called; removing twice says False."""
+    world = World()
+    world.add_box(0.0, 0.0, 1.0, 0.1, fixed=True)
+    ball = world.add_circle((0.5, 0.5), 0.05, mass=1.0, velocity=(0.0, -1.0))
+    seen = []
+    callback = world.on_collision(lambda event: seen.append(event.time), ball)
+    assert world.off_collision(callback, ball) is True
+    assert world.off_collision(callback, ball) is False
+    world.run_until(1.0)
+    assert seen == []
+
+
+def test_default_elasticity_applies_to_new_bodies_only():
+    """Assigning World.elasticity changes the default of bodies added later, not existing ones."""
+    world = World()
+    first = world.add_circle((0.2, 0.5), 0.05, mass=1.0)
+    world.elasticity = 0.5
+    second = world.add_circle((0.6, 0.5), 0.05, mass=1.0)
+    assert first.elasticity == 0.98 and second.elasticity == 0.5
+    with pytest.raises(ValueError, match="elasticity"):
+        world.elasticity = 1.5

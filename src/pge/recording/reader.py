@@ -12,7 +12,6 @@ ends early.
 
 from __future__ import annotations
 
-import struct
 import zlib
 from pathlib import Path
 
