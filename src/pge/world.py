@@ -113,6 +113,10 @@ class World:
         self._body_callbacks: dict[int, list[Callable]] = {}
         self._frame_callbacks: list[Callable] = []
         self._timers: dict[int, tuple] = {}
+        self._watchers: dict[int, int] = {}  # body id -> how many internal collision watches
+        self._collision_hooks: list[Callable] = []  # internal: called for watched bodies' collisions
+        self._removal_hooks: list[Callable] = []  # internal: called with a body id before it goes
+        self._springs = None  # pge.springs.SpringSystem, made by the first add_spring
         self._next_timer = 1
         self._frame_rate: float | None = None
         self._frame_epoch = 0
@@ -338,6 +342,9 @@ class World:
         self._changed([j for j in released if j != i])
 
     def _forget(self, i: int) -> None:
+        for hook in tuple(self._removal_hooks):
+            hook(i)
+        self._watchers.pop(i, None)
         state = self._state
         was_fixed = bool(state.I[i, L.FIXED])
         state.I[i, L.COUNT] += 1
@@ -368,8 +375,8 @@ class World:
         if self._state.I[i, L.FIXED]:
             F[i, L.FREE_AX] = F[i, L.FREE_AY] = 0.0
         else:
-            F[i, L.FREE_AX] = F[i, L.OWN_AX] + self._gravity[0]
-            F[i, L.FREE_AY] = F[i, L.OWN_AY] + self._gravity[1]
+            F[i, L.FREE_AX] = F[i, L.OWN_AX] + F[i, L.SPRING_AX] + self._gravity[0]
+            F[i, L.FREE_AY] = F[i, L.OWN_AY] + F[i, L.SPRING_AY] + self._gravity[1]
         F[i, L.AX] = F[i, L.FREE_AX]
         F[i, L.AY] = F[i, L.FREE_AY]
 
@@ -528,8 +535,95 @@ class World:
         self._update_acceleration(i)
         if self._primed:
             if not fixed:
+                state.rebuild_static()  # it leaves the static lists
                 self._fit_grid(i)
             self._touch([i] + [j for j in released if j != i])
+
+    # ------------------------------------------------------------------ springs
+
+    def _spring_system(self):
+        if self._springs is None:
+            from pge.springs import SpringSystem
+
+            self._springs = SpringSystem(self)
+        return self._springs
+
+    def add_spring(self, a: Body, b: Body, stiffness, damping=0.0, rest_length=None, two_sided: bool = False, name=None):
+        """Join the centres of ``a`` and ``b`` with a spring; returns a ``pge.springs.Spring``.
+
+        Hooke force ``stiffness * (length - rest_length)`` plus ``damping`` times
+        the rate of change of the length, along the line of the centres.
+        ``rest_length`` defaults to the current distance. Tension-only (a rope
+        that never pushes, as in PGE) unless ``two_sided``. The force is held
+        constant over each ``spring_interval`` and every sprung body is
+        predicted again at each refresh.
+        """
+        return self._spring_system().add(a, b, stiffness, damping, rest_length, two_sided, name)
+
+    def remove_spring(self, spring) -> None:
+        """Take a spring out of the world now."""
+        self._spring_system().remove(spring)
+
+    @property
+    def springs(self) -> tuple:
+        """The springs in the world, oldest first."""
+        return () if self._springs is None else self._springs.springs
+
+    @property
+    def spring_interval(self) -> float:
+        """Seconds over which spring forces are held constant (default: the frame period, or
+        0.01 s without frames)."""
+        return self._spring_system().interval
+
+    @spring_interval.setter
+    def spring_interval(self, value) -> None:
+        self._spring_system().interval = value
+
+    # ---------------------------------------------- internal hooks (springs)
+
+    def _update_notify(self, i: int) -> None:
+        self._state.I[i, L.NOTIFY] = int(i in self._body_callbacks or i in self._watchers)
+
+    def _watch(self, i: int, on: bool) -> None:
+        """Count an internal interest in body ``i``'s collisions (``_collision_hooks`` hear
+        of them); ``on=False`` takes one back."""
+        count = self._watchers.get(i, 0) + (1 if on else -1)
+        if count > 0:
+            self._watchers[i] = count
+        else:
+            self._watchers.pop(i, None)
+        self._update_notify(i)
+
+    def _at_time_internal(self, time: float, callback: Callable) -> int:
+        """Call ``callback(time)`` at simulation ``time``: an engine-internal timer, neither
+        yielded by ``events`` nor counted as a timer event. Returns its id (cancel with
+        ``cancel_timer``)."""
+        timer_id = self._next_timer
+        self._next_timer += 1
+        self._timers[timer_id] = (callback, None, True)
+        self._state.ensure_events(1)
+        queue.push(self._state.S, time, (L.TIMER << L.KIND_SHIFT) | timer_id, timer_id, 0, 0, 0, 0)
+        return timer_id
+
+    def _set_spring_accelerations(self, ids, ax, ay) -> None:
+        """Give moving bodies ``ids`` the spring accelerations ``ax[k], ay[k]`` from now on
+        (added to their own acceleration and gravity); bodies whose acceleration changes
+        are released from resting contact and predicted again."""
+        state = self._state
+        F, I = state.F, state.I
+        changed: list[int] = []
+        for i, x, y in zip(ids, ax, ay):
+            i = int(i)
+            if I[i, L.ALIVE] == 0 or I[i, L.FIXED]:
+                continue
+            if F[i, L.SPRING_AX] == x and F[i, L.SPRING_AY] == y:
+                continue
+            changed.extend(self._release(i))
+            engine.advance(F, i, self.time)
+            F[i, L.SPRING_AX], F[i, L.SPRING_AY] = x, y
+            self._update_acceleration(i)
+            changed.append(i)
+        self._changed(changed)
 
     # --------------------------------------------------------------- callbacks
 
@@ -547,7 +641,7 @@ class World:
         else:
             i = self._own(body).id
             self._body_callbacks.setdefault(i, []).append(callback)
-            self._state.I[i, L.NOTIFY] = 1
+            self._update_notify(i)
         return callback
 
     def off_collision(self, callback: Callable, body: Body | None = None) -> bool:
@@ -563,7 +657,7 @@ class World:
         callbacks.remove(callback)
         if body is not None and not callbacks:
             self._body_callbacks.pop(body.id, None)
-            self._state.I[body.id, L.NOTIFY] = 0
+            self._update_notify(body.id)
         return True
 
     def off_frame(self, callback: Callable) -> bool:
@@ -592,7 +686,7 @@ class World:
             raise TypeError(f"at_time: callback must be callable, got {callback!r}")
         timer_id = self._next_timer
         self._next_timer += 1
-        self._timers[timer_id] = (callback, data)
+        self._timers[timer_id] = (callback, data, False)
         self._state.ensure_events(1)
         queue.push(self._state.S, when, (L.TIMER << L.KIND_SHIFT) | timer_id, timer_id, 0, 0, 0, 0)
         return timer_id
@@ -675,6 +769,12 @@ class World:
                 timer = self._timers.pop(timer_id, None)
                 if timer is None:
                     continue  # cancelled
+                if timer[2]:
+                    timer[0](float(out[L.OUT_TIME]))
+                    if self._stop_requested:
+                        self._stop_requested = False
+                        return
+                    continue
                 record = Timer(float(out[L.OUT_TIME]), timer_id, timer[1])
                 state.stats[L.S_EVENTS] += 1
                 state.stats[L.S_TIMERS] += 1
@@ -696,6 +796,9 @@ class World:
                 return
 
     def _notify(self, record: Collision) -> None:
+        if self._collision_hooks and any(b is not None and b.id in self._watchers for b in (record.a, record.b)):
+            for hook in tuple(self._collision_hooks):
+                hook(record)
         for callback in tuple(self._collision_callbacks):
             callback(record)
         for body in (record.a, record.b):

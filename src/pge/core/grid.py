@@ -110,7 +110,7 @@ def gather(S, i):
             if moving:
                 for k in range(static_start[c], static_start[c + 1]):
                     j = static_items[k]
-                    if I[j, L.STAMP] != stamp:
+                    if I[j, L.STAMP] != stamp and j != i:
                         I[j, L.STAMP] = stamp
                         scratch[count] = j
                         count += 1

@@ -24,7 +24,11 @@ MASS = 26  # nan until given
 FREE_AX, FREE_AY = 27, 28  # own acceleration + gravity (zero if fixed): what the body feels when free
 REST_NX, REST_NY = 29, 30  # while resting: unit contact normal, from the support towards the body
 FRICTION = 31  # Coulomb friction coefficient
-NF = 32
+SPRING_AX, SPRING_AY = 32, 33  # acceleration from springs, held constant between refreshes
+INV_INERTIA = 34  # 1 / moment of inertia about the reference point, 0 for fixed bodies
+ORIENT = 35  # the angle the body's outline rows in OL are turned to
+HELD_OMEGA = 36  # angular velocity kept while fixed, restored by unfix
+NF = 37
 
 # ---- I: int64 per body -------------------------------------------------------
 KIND = 0  # pge.toi.CIRCLE or POLYGON
