@@ -131,9 +131,9 @@ class Body:
 
     @property
     def angle(self) -> float:
-        """Orientation in radians, anticlockwise."""
-        row, _ = self._row()
-        return float(row[L.ANGLE])
+        """Orientation in radians, anticlockwise, at the world's current time."""
+        row, world = self._row()
+        return float(row[L.ANGLE] + row[L.OMEGA] * (world.time - row[L.T0]))
 
     @angle.setter
     def angle(self, value) -> None:
@@ -141,7 +141,7 @@ class Body:
 
     @property
     def angular_velocity(self) -> float:
-        """Angular velocity in radians per second (stored; rotation physics comes later)."""
+        """Angular velocity in radians per second, anticlockwise (zero while fixed)."""
         row, _ = self._row()
         return float(row[L.OMEGA])
 
@@ -176,14 +176,14 @@ class Body:
     @property
     def bounding_box(self) -> tuple[float, float, float, float]:
         """Axis-aligned box ``(xmin, ymin, xmax, ymax)`` around the shape now."""
-        row, _ = self._row()
-        x, y = self.position
-        return (
-            float(x + row[L.EXT_X0]),
-            float(y + row[L.EXT_Y0]),
-            float(x + row[L.EXT_X1]),
-            float(y + row[L.EXT_Y1]),
-        )
+        if isinstance(self.shape, Circle):
+            x, y = self.position
+            r = self.shape.radius
+            return (float(x - r), float(y - r), float(x + r), float(y + r))
+        corners = self.vertices
+        xs = [p[0] for p in corners]
+        ys = [p[1] for p in corners]
+        return (min(xs), min(ys), max(xs), max(ys))
 
     @property
     def bounding_radius(self) -> float:
@@ -198,8 +198,11 @@ class Body:
         state = world._state
         start = state.I[self.id, L.OUTLINE_START]
         count = state.I[self.id, L.OUTLINE_N]
-        rows = state.OL[start : start + count]
-        return tuple((float(x + vx), float(y + vy)) for vx, vy in rows[:, :2])
+        rows = state.OB[start : start + count]
+        angle = self.angle
+        c = math.cos(angle)
+        s = math.sin(angle)
+        return tuple((float(x + c * vx - s * vy), float(y + s * vx + c * vy)) for vx, vy in rows[:, :2])
 
     def __repr__(self) -> str:
         if self.world is None:

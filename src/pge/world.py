@@ -17,7 +17,7 @@ from typing import Callable, Iterator
 import numpy as np
 
 from pge.bodies import Body
-from pge.core import engine, grid, queue
+from pge.core import engine, grid, motion, queue
 from pge.core import layout as L
 from pge.core.state import EngineState
 from pge.events import Collision, Frame, Stop, Timer
@@ -286,7 +286,10 @@ class World:
         F[i, L.OWN_AX], F[i, L.OWN_AY] = accel
         F[i, L.MASS] = math.nan if mass is None else mass
         F[i, L.ELASTICITY] = elasticity
-        F[i, L.OMEGA] = omega
+        if fixed:
+            F[i, L.HELD_OMEGA] = omega
+        else:
+            F[i, L.OMEGA] = omega
         F[i, L.REACH] = shape.bounding_radius
         I[i, L.FIXED] = int(fixed)
         I[i, L.ALIVE] = 1
@@ -295,8 +298,12 @@ class World:
             F[i, L.RADIUS] = shape.radius
         else:
             I[i, L.KIND] = POLYGON
-        self._set_inverse_mass(i)
-        self._orient(i, shape, angle)
+        self._set_inverse_mass(i, shape)
+        if isinstance(shape, Polygon):
+            rows = outline_rows(shape.vertices)
+            I[i, L.OUTLINE_START] = state.add_outline(rows)
+            I[i, L.OUTLINE_N] = rows.shape[0]
+        self._orient(i, angle)
         self._update_acceleration(i)
         body = Body(self, i, shape, options.get("name"), options.get("data"))
         self._handles[i] = body
@@ -313,21 +320,16 @@ class World:
             self._unchecked.add(i)
         return body
 
-    def _orient(self, i: int, shape, angle: float) -> None:
+    def _orient(self, i: int, angle: float) -> None:
+        """Turn body ``i`` to ``angle`` now (its reference state must be at now)."""
         state = self._state
-        F, I = state.F, state.I
+        F = state.F
         F[i, L.ANGLE] = angle
-        if isinstance(shape, Circle):
-            r = shape.radius
+        if state.I[i, L.KIND] == CIRCLE:
+            r = F[i, L.RADIUS]
             F[i, L.EXT_X0], F[i, L.EXT_Y0], F[i, L.EXT_X1], F[i, L.EXT_Y1] = -r, -r, r, r
             return
-        vertices = rotate_points(shape.vertices, angle)
-        rows = outline_rows(vertices)
-        I[i, L.OUTLINE_START] = state.add_outline(rows)
-        I[i, L.OUTLINE_N] = rows.shape[0]
-        F = state.F
-        F[i, L.EXT_X0], F[i, L.EXT_Y0] = rows[:, 0].min(), rows[:, 1].min()
-        F[i, L.EXT_X1], F[i, L.EXT_Y1] = rows[:, 0].max(), rows[:, 1].max()
+        motion.orient(F, state.I, state.OL, state.OB, i, F[i, L.T0])
 
     def remove(self, body: Body) -> None:
         """Take a body out of the world now; its handle becomes invalid.
@@ -387,11 +389,17 @@ class World:
         count = engine.release_body(state.S, i, self.time, state.group)
         return [int(j) for j in state.group[:count]]
 
-    def _set_inverse_mass(self, i: int) -> None:
+    def _set_inverse_mass(self, i: int, shape=None) -> None:
+        """Inverse mass and inverse moment of inertia about the centroid (0 if fixed)."""
         F = self._state.F
         mass = F[i, L.MASS]
         fixed = self._state.I[i, L.FIXED]
-        F[i, L.INV_MASS] = 0.0 if fixed or math.isnan(mass) else 1.0 / mass
+        if fixed or math.isnan(mass):
+            F[i, L.INV_MASS] = F[i, L.INV_INERTIA] = 0.0
+            return
+        F[i, L.INV_MASS] = 1.0 / mass
+        shape = shape if shape is not None else self._handles[i].shape
+        F[i, L.INV_INERTIA] = 1.0 / (mass * shape.inertia_per_mass)
 
     def _changed(self, ids) -> None:
         """Bodies whose motion changed now: invalidate, place and predict them again."""
@@ -421,11 +429,11 @@ class World:
         body = self._own(body)
         angle = check_number(body.label(), "angle", angle)
         i = body.id
-        old = float(self._state.F[i, L.ANGLE])
         self._changed(self._release(i))
         engine.advance(self._state.F, i, self.time)
-        self._orient(i, body.shape, angle)
-        self._after_geometry_change(i, lambda: self._orient(i, body.shape, old))
+        old = float(self._state.F[i, L.ANGLE])
+        self._orient(i, angle)
+        self._after_geometry_change(i, lambda: self._orient(i, old))
 
     def _after_geometry_change(self, i: int, undo: Callable) -> None:
         if not self._primed:
@@ -507,9 +515,19 @@ class World:
         self._state.F[body.id, L.ELASTICITY] = _check_elasticity(body.label(), elasticity)
 
     def set_angular_velocity(self, body: Body, omega) -> None:
-        """Store a body's angular velocity in radians per second."""
+        """Give a body an angular velocity in radians per second (anticlockwise) now. A fixed
+        body keeps it until it is released."""
         body = self._own(body)
-        self._state.F[body.id, L.OMEGA] = check_number(body.label(), "angular_velocity", omega)
+        omega = check_number(body.label(), "angular_velocity", omega)
+        i = body.id
+        F = self._state.F
+        if self._state.I[i, L.FIXED]:
+            F[i, L.HELD_OMEGA] = omega
+            return
+        released = self._release(i)
+        engine.advance(F, i, self.time)
+        F[i, L.OMEGA] = omega
+        self._changed([i] + released)
 
     def set_fixed(self, body: Body, fixed: bool = True) -> None:
         """Fix a body (immovable, infinitely heavy) or release it: it then moves on with the
@@ -525,10 +543,12 @@ class World:
         engine.advance(F, i, self.time)
         if fixed:
             F[i, L.HELD_VX], F[i, L.HELD_VY] = F[i, L.VX], F[i, L.VY]
-            F[i, L.VX] = F[i, L.VY] = 0.0
+            F[i, L.HELD_OMEGA] = F[i, L.OMEGA]
+            F[i, L.VX] = F[i, L.VY] = F[i, L.OMEGA] = 0.0
             grid.unlink(state.S, i)
         else:
             F[i, L.VX], F[i, L.VY] = F[i, L.HELD_VX], F[i, L.HELD_VY]
+            F[i, L.OMEGA] = F[i, L.HELD_OMEGA]
             self._unchecked.add(i)
         I[i, L.FIXED] = int(fixed)
         self._set_inverse_mass(i)
@@ -853,8 +873,8 @@ class World:
         self._drain()
 
     def _extent(self, i: int) -> float:
-        F = self._state.F
-        return max(F[i, L.EXT_X1] - F[i, L.EXT_X0], F[i, L.EXT_Y1] - F[i, L.EXT_Y0])
+        """Widest the body's box can be at any angle (polygons may start to turn)."""
+        return 2.0 * self._state.F[i, L.REACH]
 
     def _box_span(self, i: int) -> float:
         """Widest swept box body ``i`` can have: shape extent plus travel, with margin."""
@@ -968,13 +988,15 @@ class World:
         return out
 
     def kinetic_energy(self) -> float:
-        """Total translational kinetic energy of the moving bodies now."""
+        """Total kinetic energy of the moving bodies now: translation plus rotation about
+        the centroid (``I omega^2 / 2``)."""
         total = 0.0
         for body in self._handles.values():
             mass = body.mass
             if mass is not None and not body.is_fixed:
                 vx, vy = body.velocity
-                total += 0.5 * mass * (vx * vx + vy * vy)
+                omega = body.angular_velocity
+                total += 0.5 * mass * (vx * vx + vy * vy) + 0.5 * body.inertia * omega * omega
         return total
 
     def momentum(self) -> tuple[float, float]:

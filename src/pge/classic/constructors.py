@@ -10,8 +10,9 @@ take their vertices in order, either winding, and must be convex in level 0.
 from __future__ import annotations
 
 from pge.classic.constants import box_t, circle_t, fb_box_t, fb_circle_t
-from pge.classic.objects import SPRINGS_MISSING, Decoration, Object, Shape, Text
+from pge.classic.objects import Decoration, Object, Shape, Text
 from pge.classic.session import finite, positive
+from pge.classic.springs import spring
 from pge.shapes import Circle, Polygon
 
 __all__ = ["box", "poly3", "poly4", "poly5", "poly6", "polygon", "circle", "text", "spring"]
@@ -130,10 +131,3 @@ def text(x, y, s, c, size, level):
     x, y = finite("text", "x", x), finite("text", "y", y)
     size = positive("text", "size", size)
     return Text(x, y, str(s), c, max(1, int(round(size))), level)
-
-
-def spring(ob1, ob2, k, d, l=None):
-    """A spring between ``ob1`` and ``ob2`` with stiffness ``k``, damping ``d`` and rest length
-    ``l`` (default: their distance now). Springs are not implemented yet: raises
-    NotImplementedError."""
-    raise NotImplementedError(SPRINGS_MISSING.format(what="spring()"))

@@ -3,7 +3,9 @@
 Callback argument orders are the original's:
 
 * ``obj.on_collision(p)`` / ``obj.on_collision_with(lst, p)``: ``p(obj, event)``, object first;
-* ``pge.at_time(t, p)``: ``p(event, None)``, event first.
+* ``pge.at_time(t, p)``: ``p(event, None)``, event first;
+* ``spring.when(l, p)``: ``p(event, spring)``, event first (a function event; its timer id
+  comes from the ``at_time`` counter, see ``pge.classic.springs``).
 
 At a collision the callbacks of both objects run after the bounce, in
 ``event.collision_between()`` order (for a circle and a polygon, the polygon
@@ -129,13 +131,17 @@ def _fire(record) -> None:
 
 
 def at_cancel(i) -> None:
-    """Cancel the timer ``i`` returned by ``at_time`` (nothing if it has already fired).
+    """Cancel the timer ``i`` returned by ``at_time``, or a spring's ``when`` with that id
+    (nothing if it has already fired).
 
     Raises ValueError for an id ``at_time`` never returned.
     """
     if i in STATE.timers:
         del STATE.timers[i]
-        STATE.world.cancel_timer(i)
+        if not STATE.world.cancel_timer(i):
+            for obj in STATE.springs:  # a spring's when() shares the ids
+                if obj._spring.alive and obj._spring.cancel_when(i):
+                    break
         return
     if not (isinstance(i, int) and not isinstance(i, bool) and 1 <= i <= STATE.last_timer):
         raise ValueError(f"at_cancel: no timer has id {i!r}")

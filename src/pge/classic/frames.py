@@ -1,8 +1,8 @@
 """Frames of the classic ``pge`` module: what is drawn, in which order, and when.
 
 A frame draws the levels in ascending order: background eye-candy (levels
-< 0), the physics objects (level 0, in creation order), then foreground
-eye-candy and text (levels > 0). Positions are the World's closed-form
+< 0), the physics objects (level 0, in creation order) with the springs given
+``draw()`` on top of them, then foreground eye-candy and text (levels > 0). Positions are the World's closed-form
 positions at the frame's time. Frames go to a display through the protocol of
 ``pge.render.protocol``; this module never imports pygame.
 
@@ -72,6 +72,7 @@ def compose(display, highlight=(), colour=None) -> None:
     for level in sorted(set(STATE.levels) | {0}):
         if level == 0:
             _draw_level0(display, STATE.plan)
+            _draw_springs(display)
         else:
             for obj in STATE.levels[level]:
                 _draw_decoration(display, obj)
@@ -89,6 +90,17 @@ def _draw_level0(display, plan: _Plan) -> None:
             display.circles(xs, ys, radii, palette, index)
         else:
             display.polygon(step[1].vertices, step[2])
+
+
+def _draw_springs(display) -> None:
+    from pge.classic.springs import band
+
+    for obj in STATE.springs:
+        if obj._band is None or obj.deleted or not obj._visible or obj._alpha <= 0.0:
+            continue
+        corners = band(obj)
+        if corners is not None:
+            display.polygon(corners, rgba(obj))
 
 
 def _draw_shape(display, obj, colour) -> None:

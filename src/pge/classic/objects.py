@@ -31,7 +31,7 @@ from pge.classic.constants import (
 from pge.classic.session import STATE, finite
 from pge.geometry import check_vector
 
-__all__ = ["Object", "Shape", "Decoration", "Text", "SPRINGS_MISSING"]
+__all__ = ["Object", "Shape", "Decoration", "Text"]
 
 _SHAPES = (box_t, circle_t)
 _DRAWN = (box_t, circle_t, fb_box_t, fb_circle_t, fb_text_t)
@@ -44,11 +44,6 @@ _NAMES = {
     fb_circle_t: "fb_circle",
     fb_text_t: "fb_text",
 }
-
-SPRINGS_MISSING = (
-    "springs are not implemented yet in pge (they arrive with the springs issue); {what} cannot be used until then"
-)
-
 
 def _is_colour(value) -> bool:
     return isinstance(value, Object) and value.type == colour_t
@@ -402,22 +397,57 @@ class Object:
 
     # ----------------------------------------------------------------- springs
 
+    def _spring_object(self, method: str, verb: str, given: str):
+        """This object as a live spring, or TypeError (not a spring) / ValueError (deleted)."""
+        self._need((spring_t,), method, verb)
+        if self.deleted:
+            raise ValueError(f"object has been deleted and now it is being given {given}")
+        return self
+
     def draw(self, c, w):
-        """Draw a spring in colour ``c`` and width ``w``. Springs are not implemented yet."""
-        raise NotImplementedError(SPRINGS_MISSING.format(what="draw()"))
+        """Draw this spring in a window as a filled band ``w`` wide (world units) between the two
+        centres, in colour ``c``; returns self. Springs not drawn are invisible."""
+        from pge.classic.springs import check_drawing
+
+        spring = self._spring_object("draw", "draw a spring on", "a spring drawing")
+        spring._set_drawing(c, check_drawing("draw", c, w))
+        return self
 
     def end(self, c):
-        """Debug colour when a spring reaches an extreme. Springs are not implemented yet."""
-        raise NotImplementedError(SPRINGS_MISSING.format(what="end()"))
+        """Debug colour for the moments the spring is at an extreme (PGE drew extra frames then);
+        kept, not drawn. Returns self."""
+        from pge.classic.springs import check_drawing
+
+        spring = self._spring_object("end", "give a spring end colour to", "a spring end colour")
+        check_drawing("end", c)
+        spring._end_colour = c
+        return self
 
     def mid(self, c):
-        """Debug colour when a spring passes its rest length. Springs are not implemented yet."""
-        raise NotImplementedError(SPRINGS_MISSING.format(what="mid()"))
+        """Debug colour for the moments the spring passes its rest length; kept, not drawn.
+        Returns self."""
+        from pge.classic.springs import check_drawing
+
+        spring = self._spring_object("mid", "give a spring mid colour to", "a spring mid colour")
+        check_drawing("mid", c)
+        spring._mid_colour = c
+        return self
 
     def when(self, l, p):
-        """Call ``p(event, spring)`` once when the spring's length is ``l``. Springs are not
-        implemented yet."""
-        raise NotImplementedError(SPRINGS_MISSING.format(what="when()"))
+        """Call ``p(event, spring)`` once, at the first time from now that the spring's length is
+        ``l`` (stretching or shortening); returns self.
+
+        ``event`` is a function event; its ``get_timer_id()`` comes from the
+        ``at_time`` counter and ``at_cancel`` cancels it.
+        """
+        spring = self._spring_object("when", "give a length callback to", "a length callback")
+        l = finite("when", "l", l)
+        if l <= 0.0:
+            raise ValueError(f"when: l must be positive, got {l!r}")
+        if not callable(p):
+            raise TypeError(f"when: p must be callable as p(event, spring), got {p!r}")
+        spring._watch_length(l, p)
+        return self
 
     def __repr__(self) -> str:
         state = " deleted" if self.deleted else ""
@@ -529,7 +559,10 @@ class Shape(Object):
         STATE.shapes.pop(self, None)
         STATE.unfixed.discard(self)
         if self._body is not None:
-            STATE.world.remove(self._body)
+            STATE.world.remove(self._body)  # takes the springs attached to it
+            for spring in [s for s in STATE.springs if not s._spring.alive]:
+                spring.deleted = True
+                del STATE.springs[spring]
         elif self in STATE.pending:
             STATE.pending.remove(self)
 

@@ -38,6 +38,7 @@ class Session:
         self.gravity = 0.0  # world gravity, y component
         self.elasticity = DEFAULT_ELASTICITY
         self.shapes: dict = {}  # level-0 objects (pending or in the World), creation order
+        self.springs: dict = {}  # spring objects (pge.classic.springs) in creation order
         self.levels: dict[int, dict] = {}  # level != 0 -> eye-candy objects in creation order
         self.pending: list = []  # objects waiting for the next commit point
         self.unfixed: set = set()  # objects released with unfix() since the last commit

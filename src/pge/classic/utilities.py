@@ -102,7 +102,8 @@ def message(text) -> None:
 
 
 def dump_world() -> None:
-    """Print every level-0 object: kind, state, position, size, mass, velocity, colour."""
+    """Print every level-0 object (kind, state, position, size, mass, velocity, colour), then
+    every spring (its ends, stiffness, damping, rest length and length now)."""
     print(f"pge world at time {STATE.now()!r}: {len(STATE.shapes)} objects")
     for number, obj in enumerate(STATE.shapes, start=1):
         state = "fixed" if obj._fixed else "movable"
@@ -121,3 +122,11 @@ def dump_world() -> None:
         if obj._body is None:
             line += " (pending: joins the simulation at the next commit point)"
         print(line)
+    numbers = {obj: number for number, obj in enumerate(STATE.shapes, start=1)}
+    for obj in STATE.springs:
+        spring = obj.spring
+        first, second = (numbers.get(end, "?") for end in obj._ends)
+        print(
+            f"spring between object {first} and object {second}: k {spring.stiffness!r} "
+            f"d {spring.damping!r} rest length {spring.rest_length!r} length {spring.length!r}"
+        )

@@ -29,7 +29,7 @@ import math
 from numba import njit
 
 from pge.core import layout as L
-from pge.core.motion import advance, state_at
+from pge.core.motion import advance, orient, state_at
 from pge.core.queue import push
 from pge.numerics.roots import first_descent_quadratic
 
@@ -114,18 +114,84 @@ def settle_acceleration(S, r, t):
 
 
 @njit(cache=True)
-def try_rest(S, r, s, mx, my, owner, edge, t):
+def _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
+    """Let turning polygon ``r`` come to rest flat on ``s``'s edge, if it qualifies.
+
+    A rocking polygon would strike its support ever faster, like a bouncing
+    ball. It settles when the edge of ``r`` next to the contact corner lies
+    within ``height`` of the support's edge (its far end is lifted by no
+    more) and its remaining normal and turning energy could lift it no higher
+    than ``height``. It is then turned about the contact corner until that
+    edge lies flat, and stops turning. Returns True if it settled.
+    """
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    if owner != s:
+        return False  # the support touches r with a corner: r balances on a point
+    start = I[r, L.OUTLINE_START]
+    n = I[r, L.OUTLINE_N]
+    cx = F[r, L.X]
+    cy = F[r, L.Y]
+    corner = 0
+    best = _INF
+    for k in range(n):
+        d = math.hypot(cx + OL[start + k, 0] - px, cy + OL[start + k, 1] - py)
+        if d < best:
+            best = d
+            corner = k
+    # The edge beside the corner whose outward normal is closest to -m.
+    before = (corner + n - 1) % n
+    if -(OL[start + corner, 2] * mx + OL[start + corner, 3] * my) >= -(OL[start + before, 2] * mx + OL[start + before, 3] * my):
+        edge_row = start + corner
+        far = start + (corner + 1) % n
+    else:
+        edge_row = start + before
+        far = start + before
+    lift = (OL[far, 0] - OL[start + corner, 0]) * mx + (OL[far, 1] - OL[start + corner, 1]) * my
+    if not lift <= height:
+        return False
+    inertia = F[r, L.INV_MASS] / F[r, L.INV_INERTIA] if F[r, L.INV_INERTIA] > 0.0 else 0.0
+    omega = F[r, L.OMEGA]
+    energy = 0.5 * omega * omega * inertia
+    if vn > 0.0:
+        energy += 0.5 * vn * vn
+    if not energy <= -an * height:
+        return False
+    # Turn by delta about the corner so that the edge's normal becomes -m.
+    enx = OL[edge_row, 2]
+    eny = OL[edge_row, 3]
+    delta = math.atan2(-(enx * my - eny * mx), -(enx * mx + eny * my))
+    qx = cx + OL[start + corner, 0]
+    qy = cy + OL[start + corner, 1]
+    c = math.cos(delta)
+    sn = math.sin(delta)
+    ox = cx - qx
+    oy = cy - qy
+    F[r, L.X] = qx + c * ox - sn * oy
+    F[r, L.Y] = qy + sn * ox + c * oy
+    F[r, L.ANGLE] += delta
+    F[r, L.OMEGA] = 0.0
+    orient(F, I, OL, S[18], r, t)
+    return True
+
+
+@njit(cache=True)
+def try_rest(S, r, s, mx, my, owner, edge, px, py, t):
     """Let rider ``r`` come to rest on ``s`` after a bounce, if it qualifies.
 
-    ``(mx, my)`` is the unit contact normal from ``s`` towards ``r``;
-    ``owner``/``edge`` name the edge carrying a flat contact (``owner = -1``
-    for a curved one). Both bodies are at time ``t``. Returns True if ``r``
-    now rests (its velocity and acceleration changed).
+    ``(mx, my)`` is the unit contact normal from ``s`` towards ``r`` and
+    ``(px, py)`` the contact point; ``owner``/``edge`` name the edge carrying
+    a flat contact (``owner = -1`` for a curved one). Both bodies are at time
+    ``t``. A turning polygon must first settle flat (``_settle_turning``).
+    Returns True if ``r`` now rests (its motion changed).
     """
     F = S[0]
     I = S[1]
     P = S[3]
     if I[r, L.FIXED] != 0 or I[r, L.SUPPORT] >= 0 or not grounded(I, s):
+        return False
+    if I[s, L.KIND] != 0 and F[s, L.OMEGA] != 0.0:
         return False
     rel_vx = F[r, L.VX] - F[s, L.VX]
     rel_vy = F[r, L.VY] - F[s, L.VY]
@@ -138,6 +204,9 @@ def try_rest(S, r, s, mx, my, owner, edge, t):
     height = P[L.REST_HEIGHT] * F[r, L.REACH]
     if vn > 0.0 and vn * vn > -2.0 * an * height:
         return False
+    if I[r, L.KIND] != 0 and F[r, L.OMEGA] != 0.0:
+        if not _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
+            return False
     if owner < 0:
         vt = -rel_vx * my + rel_vy * mx
         at = -rel_ax * my + rel_ay * mx

@@ -2,7 +2,7 @@
 
 State is one tuple ``S`` of arrays (see ``pge.core.state.EngineState``):
 ``(F, I, OL, P, Q, head, static_start, static_items, heap, slot_time,
-slot_key, slot_data, free, stats, out, scratch, pending)``; column meanings
+slot_key, slot_data, free, stats, out, scratch, pending, group, OB)``; column meanings
 are in ``pge.core.layout``.
 
 One event (``run``): pop the earliest queue entry; skip it if stale (a
@@ -29,12 +29,14 @@ from pge.core.contact import (
     try_rest,
 )
 from pge.core.grid import gather
-from pge.core.motion import advance, state_at
-from pge.core.predict import new_mark, place, predict
+from pge.core.impulse import contact_impulse
+from pge.core.motion import advance, orient, state_at
+from pge.core.predict import new_mark, place, predict, spinning
 from pge.core.queue import pop_earliest
 from pge.toi.circle_circle import circle_circle_contact
 from pge.toi.circle_polygon import circle_polygon_contact, closest_feature
 from pge.toi.polygon_polygon import minkowski_faces, polygon_polygon_contact
+from pge.toi.rotating import press_rate, rotating_polygon_polygon_contact
 
 _INF = math.inf
 CIRCLE = 0
@@ -119,36 +121,62 @@ def release_body(S, i, t, out):
 
 
 @njit(cache=True, inline="always")
-def _give(F, I, x, dx, dy):
-    """Inverse mass of body ``x`` for an impulse along ``(dx, dy)``, and whether a resting
-    body keeps resting (the impulse presses it into its support, which then absorbs the
-    normal part)."""
-    inverse = F[x, L.INV_MASS]
+def _keeps_resting(F, I, x, dx, dy):
+    """True if resting body ``x`` keeps resting under an impulse along ``(dx, dy)``: the
+    impulse presses it into its support, which then absorbs the part along the rest
+    normal (and any turning: a body pressed flat onto its support does not tip)."""
     if I[x, L.SUPPORT] < 0:
-        return inverse, False
-    dm = dx * F[x, L.REST_NX] + dy * F[x, L.REST_NY]
-    if dm <= 0.0:
-        return inverse * (1.0 - dm * dm), True
-    return inverse, False
+        return False
+    return dx * F[x, L.REST_NX] + dy * F[x, L.REST_NY] <= 0.0
+
+
+@njit(cache=True, inline="always")
+def _response(F, x, keep, rx, ry, nx, ny, tx, ty):
+    """Body ``x``'s share ``(k_nn, k_nt, k_tt)`` of the contact-space inverse mass at lever
+    arm ``(rx, ry)``, normal ``n`` and tangent ``t``; a body kept resting moves only
+    across its rest normal and does not turn."""
+    m = F[x, L.INV_MASS]
+    if keep:
+        mx = F[x, L.REST_NX]
+        my = F[x, L.REST_NY]
+        pn = nx * mx + ny * my
+        pt = tx * mx + ty * my
+        return m * (1.0 - pn * pn), -m * pn * pt, m * (1.0 - pt * pt)
+    inertia = F[x, L.INV_INERTIA]
+    rn = rx * ny - ry * nx
+    rt = rx * ty - ry * tx
+    return m + inertia * rn * rn, inertia * rn * rt, m + inertia * rt * rt
+
+
+@njit(cache=True, inline="always")
+def _apply(F, x, keep, jx, jy, rx, ry):
+    """Give body ``x`` the impulse ``(jx, jy)`` at lever arm ``(rx, ry)``; True if its
+    motion changed."""
+    if keep:
+        mx = F[x, L.REST_NX]
+        my = F[x, L.REST_NY]
+        along = jx * mx + jy * my
+        jx -= along * mx
+        jy -= along * my
+    dvx = jx * F[x, L.INV_MASS]
+    dvy = jy * F[x, L.INV_MASS]
+    dw = 0.0 if keep else (rx * jy - ry * jx) * F[x, L.INV_INERTIA]
+    if dvx == 0.0 and dvy == 0.0 and dw == 0.0:
+        return False
+    F[x, L.VX] += dvx
+    F[x, L.VY] += dvy
+    F[x, L.OMEGA] += dw
+    return True
 
 
 @njit(cache=True)
-def collide(S, a, b, feature, t):
-    """Resolve the contact of ``a`` and ``b`` at ``t``; returns the impulse (0: a graze).
-
-    The contact record goes to ``out``. The impulse acts along the contact
-    normal with the combined restitution; a resting body pressed into its
-    support passes the normal part on to it (it keeps resting), one pulled
-    away is released first. Afterwards the slower body may come to rest.
-    """
+def contact_geometry(S, a, b, feature):
+    """Contact point and unit normal (from b towards a) of ``a`` and ``b`` at their common
+    reference time, with ``feature`` from the kernel; also the edge carrying a flat
+    contact: ``(px, py, nx, ny, owner, edge)`` (``owner = -1``: none)."""
     F = S[0]
     I = S[1]
     OL = S[2]
-    Q = S[4]
-    out = S[14]
-    group = S[17]
-    advance(F, a, t)
-    advance(F, b, t)
     n_b = I[b, L.OUTLINE_N]
     owner = -1
     edge = 0
@@ -162,56 +190,155 @@ def collide(S, a, b, feature, t):
             if feature >= 0:
                 owner = b
                 edge = feature
+        return px, py, nx, ny, owner, edge
+    if F[a, L.OMEGA] != 0.0 or F[b, L.OMEGA] != 0.0:
+        # The outlines are turned to now; the angular velocities pick the point of a
+        # face-to-face patch (its faster-approaching end).
+        px, py, nx, ny = rotating_polygon_polygon_contact(
+            F[a, L.X], F[a, L.Y], F[b, L.X], F[b, L.Y], F[a, L.VX] - F[b, L.VX], F[a, L.VY] - F[b, L.VY], OL,
+            I[a, L.OUTLINE_START], I[a, L.OUTLINE_N], 0.0, F[a, L.OMEGA],
+            I[b, L.OUTLINE_START], n_b, 0.0, F[b, L.OMEGA], feature,
+        )
     else:
         px, py, nx, ny = polygon_polygon_contact(
             F[a, L.X], F[a, L.Y], F[b, L.X], F[b, L.Y], OL, I[a, L.OUTLINE_START], I[a, L.OUTLINE_N], I[b, L.OUTLINE_START], n_b, feature
         )
-        if feature < n_b:
-            owner = b
-            edge = feature
-        else:
-            owner = a
-            edge = feature - n_b
-    normal_speed = (F[a, L.VX] - F[b, L.VX]) * nx + (F[a, L.VY] - F[b, L.VY]) * ny
+    if feature < n_b:
+        owner = b
+        edge = feature
+    else:
+        owner = a
+        edge = feature - n_b
+    return px, py, nx, ny, owner, edge
+
+
+@njit(cache=True)
+def _pivot(S, a, b, px, py, nx, ny, restitution, approach):
+    """Keep a turning polygon's pressed contact from a Zeno run of ever smaller bounces.
+
+    A polygon rocking on a corner under gravity strikes it ever more gently
+    and often, converging on a contact that lasts (the body pivots), which
+    has no closed form. Instead, while the contact is pressed shut
+    (``press_rate`` < 0) it leaves at no less than ``v_min = sqrt(2 |g''| h)``,
+    the speed that lifts the corner by ``h = rest_height x`` the smaller
+    bounding radius: ``max(e approach, v_min)`` when it came in faster than
+    ``v_min`` (no energy gained), else ``v_min``, a gain of at most
+    ``m |g''| h`` per such event, and the events of a pivot come at intervals of
+    about ``2 v_min / |g''|`` instead of converging. Returns True if it acted.
+    """
+    F = S[0]
+    I = S[1]
+    P = S[3]
+    if I[a, L.SUPPORT] >= 0 or I[b, L.SUPPORT] >= 0:
+        return False
+    if not (spinning(F, I, a) or spinning(F, I, b)):
+        return False
+    ox = F[a, L.X] - F[b, L.X]
+    oy = F[a, L.Y] - F[b, L.Y]
+    wa = F[a, L.OMEGA] if I[a, L.KIND] != CIRCLE else 0.0
+    wb = F[b, L.OMEGA] if I[b, L.KIND] != CIRCLE else 0.0
+    curvature = press_rate(
+        px - F[b, L.X], py - F[b, L.Y], nx, ny, ox, oy,
+        F[a, L.VX] - F[b, L.VX], F[a, L.VY] - F[b, L.VY], F[a, L.AX] - F[b, L.AX], F[a, L.AY] - F[b, L.AY], wa, wb,
+    )
+    if not curvature < 0.0:
+        return False
+    rax = px - F[a, L.X]
+    ray = py - F[a, L.Y]
+    rbx = px - F[b, L.X]
+    rby = py - F[b, L.Y]
+    ux = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
+    uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
+    leaving = ux * nx + uy * ny
+    height = P[L.REST_HEIGHT] * min(F[a, L.REACH], F[b, L.REACH])
+    floor = math.sqrt(-2.0 * curvature * height)
+    target = floor if approach < floor else max(restitution * approach, floor)
+    if leaving >= target:
+        return False
+    ann, _, _ = _response(F, a, False, rax, ray, nx, ny, -ny, nx)
+    bnn, _, _ = _response(F, b, False, rbx, rby, nx, ny, -ny, nx)
+    if not ann + bnn > 0.0:
+        return False
+    extra = (target - leaving) / (ann + bnn)
+    _apply(F, a, False, extra * nx, extra * ny, rax, ray)
+    _apply(F, b, False, -extra * nx, -extra * ny, rbx, rby)
+    return True
+
+
+@njit(cache=True)
+def collide(S, a, b, feature, t):
+    """Resolve the contact of ``a`` and ``b`` at ``t``; returns the normal impulse (0: a graze).
+
+    The contact record goes to ``out``. The impulse acts at the contact point
+    with restitution and Coulomb friction (``pge.core.impulse``), changing
+    both bodies' velocities and spins; a resting body pressed into its
+    support passes the normal part on to it (it keeps resting), one pulled
+    away is released first. Afterwards the slower body may come to rest.
+    """
+    F = S[0]
+    I = S[1]
+    Q = S[4]
+    out = S[14]
+    group = S[17]
+    advance(F, a, t)
+    advance(F, b, t)
+    orient(F, I, S[2], S[18], a, t)
+    orient(F, I, S[2], S[18], b, t)
+    px, py, nx, ny, owner, edge = contact_geometry(S, a, b, feature)
+    tx = -ny
+    ty = nx
+    rax = px - F[a, L.X]
+    ray = py - F[a, L.Y]
+    rbx = px - F[b, L.X]
+    rby = py - F[b, L.Y]
+    wa = F[a, L.OMEGA]
+    wb = F[b, L.OMEGA]
+    ux = F[a, L.VX] - wa * ray - (F[b, L.VX] - wb * rby)
+    uy = F[a, L.VY] + wa * rax - (F[b, L.VY] + wb * rbx)
+    normal_speed = ux * nx + uy * ny
     impulse = 0.0
     count = 0
     if normal_speed < 0.0:
-        ka, keep_a = _give(F, I, a, nx, ny)
-        kb, keep_b = _give(F, I, b, -nx, -ny)
+        keep_a = _keeps_resting(F, I, a, nx, ny)
+        keep_b = _keeps_resting(F, I, b, -nx, -ny)
         if I[a, L.SUPPORT] >= 0 and not keep_a:
             detach(S, a)
             S[13][L.S_RELEASES] += 1
         if I[b, L.SUPPORT] >= 0 and not keep_b:
             detach(S, b)
             S[13][L.S_RELEASES] += 1
-        if ka + kb > 0.0:
+        ann, ant, att = _response(F, a, keep_a, rax, ray, nx, ny, tx, ty)
+        bnn, bnt, btt = _response(F, b, keep_b, rbx, rby, nx, ny, tx, ty)
+        knn = ann + bnn
+        if knn > 0.0:
             restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
-            impulse = -(1.0 + restitution) * normal_speed / (ka + kb)
-            for x, sign, keep in ((a, 1.0, keep_a), (b, -1.0, keep_b)):
-                jx = sign * impulse * nx
-                jy = sign * impulse * ny
-                if keep:
-                    mx = F[x, L.REST_NX]
-                    my = F[x, L.REST_NY]
-                    along = jx * mx + jy * my
-                    jx -= along * mx
-                    jy -= along * my
-                dvx = jx * F[x, L.INV_MASS]
-                dvy = jy * F[x, L.INV_MASS]
-                if dvx != 0.0 or dvy != 0.0:
-                    F[x, L.VX] += dvx
-                    F[x, L.VY] += dvy
-                    group[count] = x
-                    count += 1
+            mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
+            impulse, tangential = contact_impulse(
+                normal_speed, ux * tx + uy * ty, knn, ant + bnt, att + btt, restitution, mu
+            )
+            jx = impulse * nx + tangential * tx
+            jy = impulse * ny + tangential * ty
+            if _apply(F, a, keep_a, jx, jy, rax, ray):
+                group[count] = a
+                count += 1
+            if _apply(F, b, keep_b, -jx, -jy, rbx, rby):
+                group[count] = b
+                count += 1
     # The slower of a bounce may come to rest on the other.
-    if try_rest(S, a, b, nx, ny, owner, edge, t):
+    if try_rest(S, a, b, nx, ny, owner, edge, px, py, t):
         group[count] = a
         count += 1
         S[13][L.S_RESTS] += 1
-    elif try_rest(S, b, a, -nx, -ny, owner, edge, t):
+    elif try_rest(S, b, a, -nx, -ny, owner, edge, px, py, t):
         group[count] = b
         count += 1
         S[13][L.S_RESTS] += 1
+    elif _pivot(S, a, b, px, py, nx, ny, combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE]), max(-normal_speed, 0.0)):
+        impulse = max(impulse, 1e-300)
+        for x in (a, b):
+            if I[x, L.FIXED] == 0:
+                group[count] = x
+                count += 1
     if impulse == 0.0 and count == 0:
         # A graze: nothing changed, but look again from here.
         if I[a, L.FIXED] == 0:
@@ -351,6 +478,8 @@ def overlap_depth(S, i, j):
     I = S[1]
     OL = S[2]
     P = S[3]
+    orient(F, I, OL, S[18], i, P[L.TIME])
+    orient(F, I, OL, S[18], j, P[L.TIME])
     xi, yi, _, _ = state_at(F, i, P[L.TIME])
     xj, yj, _, _ = state_at(F, j, P[L.TIME])
     if I[i, L.KIND] == CIRCLE and I[j, L.KIND] == CIRCLE:

@@ -18,14 +18,21 @@ from numba import njit
 from pge.broadphase.bounds import cannot_touch_before, swept_range, travel_horizon
 from pge.core import layout as L
 from pge.core.grid import file_in_cell, gather
-from pge.core.motion import state_at
+from pge.core.motion import kernel_angle, orient, state_at
 from pge.core.queue import push
 from pge.toi.circle_circle import circle_circle
 from pge.toi.circle_polygon import circle_polygon
 from pge.toi.polygon_polygon import polygon_polygon
+from pge.toi.rotating import CHECKPOINT, rotating_circle_polygon, rotating_polygon_polygon
 
 _INF = math.inf
 CIRCLE = 0
+
+
+@njit(cache=True, inline="always")
+def spinning(F, I, i):
+    """True for a polygon that turns (a circle's turning does not change its shape)."""
+    return I[i, L.KIND] != CIRCLE and F[i, L.OMEGA] != 0.0
 
 
 @njit(cache=True, inline="always")
@@ -35,17 +42,23 @@ def place(S, i):
     I = S[1]
     P = S[3]
     now = P[L.TIME]
+    orient(F, I, S[2], S[18], i, now)
     ax = F[i, L.AX]
     ay = F[i, L.AY]
     x, y, vx, vy = state_at(F, i, now)
-    if I[i, L.FIXED] != 0 or (vx == 0.0 and vy == 0.0 and ax == 0.0 and ay == 0.0):
+    spin = 0.0
+    if spinning(F, I, i):
+        spin = abs(F[i, L.OMEGA]) * F[i, L.REACH]
+    if I[i, L.FIXED] != 0 or (vx == 0.0 and vy == 0.0 and ax == 0.0 and ay == 0.0 and spin == 0.0):
         horizon = _INF
         x0 = x
         x1 = x
         y0 = y
         y1 = y
     else:
-        span = travel_horizon(math.hypot(vx, vy), math.hypot(ax, ay), P[L.TRAVEL])
+        # A spinning polygon's corners travel |omega| R faster than its centroid: the
+        # horizon bounds their path too, which keeps the rotating kernels' windows short.
+        span = travel_horizon(math.hypot(vx, vy) + spin, math.hypot(ax, ay), P[L.TRAVEL])
         horizon = now + span
         if horizon <= now:
             horizon = np.nextafter(now, _INF)
@@ -119,7 +132,12 @@ def predict(S, i, mark):
         jkind = I[j, L.KIND]
         first = i
         second = j
-        if ikind == CIRCLE:
+        if spinning(F, I, i) or spinning(F, I, j):
+            t, feature = _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window)
+            if ikind != CIRCLE and jkind == CIRCLE:
+                first = j
+                second = i
+        elif ikind == CIRCLE:
             if jkind == CIRCLE:
                 t, feature = circle_circle(dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], F[j, L.RADIUS], window)
             else:
@@ -147,6 +165,11 @@ def predict(S, i, mark):
                 I[j, L.OUTLINE_N],
                 window,
             )
+        if feature == CHECKPOINT:
+            # The rotating search ran out of budget: no contact before now + t; look
+            # again from there.
+            push(S, now + t, (L.HORIZON_EVENT << L.KIND_SHIFT) | i, i, -1, I[i, L.COUNT], 0, 0)
+            continue
         if t != _INF:
             stats[L.S_HITS] += 1
             if i < j:
@@ -154,6 +177,34 @@ def predict(S, i, mark):
             else:
                 key = (j << L.ID_SHIFT) | i
             push(S, now + t, key, first, second, I[first, L.COUNT], I[second, L.COUNT], feature)
+
+
+@njit(cache=True)
+def _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window):
+    """First contact of ``i`` and ``j`` when a polygon among them spins: the rotating
+    kernels on the unturned outlines ``OB`` and the angles now. ``d, dv, da`` are
+    ``i`` relative to ``j``; a (polygon, circle) pair is turned round."""
+    F = S[0]
+    I = S[1]
+    OB = S[18]
+    if I[i, L.KIND] == CIRCLE:
+        if I[j, L.KIND] == CIRCLE:
+            return _INF, 0
+        return rotating_circle_polygon(
+            dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], OB, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N],
+            kernel_angle(F, j, now), F[j, L.OMEGA], window,
+        )
+    if I[j, L.KIND] == CIRCLE:
+        return rotating_circle_polygon(
+            -dx, -dy, -dvx, -dvy, -dax, -day, F[j, L.RADIUS], OB, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N],
+            kernel_angle(F, i, now), F[i, L.OMEGA], window,
+        )
+    return rotating_polygon_polygon(
+        dx, dy, dvx, dvy, dax, day, OB,
+        I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], kernel_angle(F, i, now), F[i, L.OMEGA],
+        I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], kernel_angle(F, j, now), F[j, L.OMEGA],
+        window,
+    )
 
 
 @njit(cache=True)

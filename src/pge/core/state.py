@@ -23,7 +23,8 @@ class EngineState:
         self.I[:, L.CELL] = -1
         self.I[:, L.SUPPORT] = -1
         self.I[:, L.RIDER_HEAD] = -1
-        self.OL = np.zeros((64, 5))
+        self.OL = np.zeros((64, 5))  # polygon outlines turned to each body's ORIENT angle
+        self.OB = np.zeros((64, 5))  # the same outlines unturned (angle 0): the rotating kernels' input
         self.n_outline = 0
         self.P = np.zeros(L.NP)
         self.Q = np.zeros(L.NQ, dtype=np.int64)
@@ -67,6 +68,7 @@ class EngineState:
             self.scratch,
             self.pending,
             self.group,
+            self.OB,
         )
 
     def _update_min_free(self) -> None:
@@ -101,15 +103,18 @@ class EngineState:
         return index
 
     def add_outline(self, rows: np.ndarray) -> int:
-        """Store polygon outline rows; returns the first row's index."""
+        """Store a polygon's unturned outline rows (in OB and OL); returns the first row's index."""
         needed = self.n_outline + rows.shape[0]
         if needed > self.OL.shape[0]:
             capacity = max(needed, 2 * self.OL.shape[0])
             OL = np.zeros((capacity, 5))
             OL[: self.n_outline] = self.OL[: self.n_outline]
-            self.OL = OL
+            OB = np.zeros((capacity, 5))
+            OB[: self.n_outline] = self.OB[: self.n_outline]
+            self.OL, self.OB = OL, OB
         start = self.n_outline
         self.OL[start:needed] = rows
+        self.OB[start:needed] = rows
         self.n_outline = needed
         self.refresh()
         return start

@@ -285,6 +285,26 @@ def _rate_at(px, py, nx, ny, ox, oy, vx, vy, omega_a, omega_b):
 
 
 @njit(cache=True)
+def press_rate(px, py, nx, ny, ox, oy, vx, vy, ax, ay, omega_a, omega_b):
+    """Second derivative of the gap at a contact point ``p`` with normal ``n`` (b towards
+    a) while the two touch: negative when the contact is being pressed shut.
+
+    ``p`` and ``o = D`` are relative to b's centroid, ``v = D'``, ``a = D''``.
+    The normal turns with b, so ``g'' = 2 omega_b (J n) . u + n . A`` with
+    ``u`` and ``A`` the relative velocity and acceleration of the material
+    points at ``p`` (centripetal terms included; a circle passes ``omega_a =
+    0``, its centre standing for its rim).
+    """
+    rx = px - ox
+    ry = py - oy
+    ux = vx - omega_a * ry + omega_b * py
+    uy = vy + omega_a * rx - omega_b * px
+    acx = ax - omega_a * omega_a * rx + omega_b * omega_b * px
+    acy = ay - omega_a * omega_a * ry + omega_b * omega_b * py
+    return 2.0 * omega_b * (-ny * ux + nx * uy) + nx * acx + ny * acy
+
+
+@njit(cache=True)
 def _patch(geo, n_a, n_b, ox, oy, vx, vy, omega_a, omega_b, face, tie):
     """Contact point (relative to b's centroid), normal (b towards a) and approach rate of a face.
 
@@ -466,15 +486,23 @@ def rotating_search(
         touching = gap <= eps or separation <= eps
     if touching:
         if circle:
-            feature, _, _, _, _, approach = _circle_patch(
+            feature, px, py, nx, ny, approach = _circle_patch(
                 ox, oy, vx, vy, radius, outline, start_b, n_b, theta_b, omega_b
             )
+            curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, 0.0, omega_b)
         else:
-            _, _, _, _, approach = _patch(geo, n_a, n_b, ox, oy, vx, vy, omega_a, omega_b, face, tie)
+            px, py, nx, ny, approach = _patch(geo, n_a, n_b, ox, oy, vx, vy, omega_a, omega_b, face, tie)
             feature = face
+            curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, omega_a, omega_b)
         # A rate that is only rounding (a corner at the end of its sweep) is no approach:
         # reporting it would start an endless run of zero-time contacts.
-        if approach < -_STILL * (math.hypot(dvx, dvy) + spin):
+        still = _STILL * (math.hypot(dvx, dvy) + spin)
+        if approach < -still:
+            return 0.0, feature, 0
+        # Touching, not separating and pressed shut (gravity on a corner): a contact now,
+        # or the shapes would sink into each other unseen.
+        pressing = _STILL * (accel + swing_a + swing_b + 2.0 * spin_b * (math.hypot(dvx, dvy) + spin))
+        if approach <= still and curvature < -pressing:
             return 0.0, feature, 0
         # Touching and not approaching: the contact now ending is no new one.
         escape = True
