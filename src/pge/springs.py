@@ -59,6 +59,9 @@ DEFAULT_INTERVAL = 0.01
 
 _INF = math.inf
 
+#: relative tolerance on ``length^2`` within which a spring counts as at a ``when`` length now.
+AT_LENGTH = 1e-12
+
 
 class LengthReached(NamedTuple):
     """A spring's length reached the ``length`` asked for with ``Spring.when``, at ``time``.
@@ -479,6 +482,10 @@ class SpringSystem:
             watch.timer = None
             watch.due = _INF
         coefficients = _length_quartic(world, spring._a.id, spring._b.id, watch.length)
+        if abs(coefficients[0]) <= _at_length(coefficients[1], watch.length, now):
+            # At the length now (a when() made in the callback of another at the same length, or
+            # a refresh right at a crossing): which side it is on is the way it is heading.
+            coefficients = (0.0,) + coefficients[1:]
         side = _side(coefficients)
         if registering or watch.side == 0:
             watch.side = side or 1
@@ -530,6 +537,12 @@ def _length_quartic(world, i: int, j: int, length: float) -> tuple:
         vx * ax + vy * ay,
         0.25 * (ax * ax + ay * ay),
     )
+
+
+def _at_length(rate: float, length: float, now: float) -> float:
+    """How far ``|s|^2 - length^2`` may be from 0 and still count as "at the length": the
+    rounding of the squares (1e-12 relative) plus what a few ulps of the clock move it."""
+    return AT_LENGTH * length * length + 16.0 * math.ulp(now) * abs(rate)
 
 
 def _side(coefficients) -> int:

@@ -40,6 +40,8 @@ from pge.toi.rotating import press_rate, rotating_polygon_polygon_contact
 
 _INF = math.inf
 CIRCLE = 0
+#: a pressed corner slower than this fraction of the pivot speed is lifted to it
+_KICK = 0.1
 
 
 # ---------------------------------------------------------------- work list
@@ -120,14 +122,75 @@ def release_body(S, i, t, out):
 # ------------------------------------------------------------------- response
 
 
+@njit(cache=True)
+def _tips(F, I, OL, x, nx, ny, px, py):
+    """True if an impulse along ``(nx, ny)`` at ``(px, py)`` lifts an end of resting
+    polygon ``x``'s base off its support (it tips or flies), False if the support holds
+    the base down.
+
+    The base's ends are the polygon's extreme corners on the support side.
+    The ends' normal velocities are linear in the impulse, so a unit impulse
+    decides: free, both ends leave or stay; else the support pushes at one
+    end (a non-negative reaction that stops it) and the other may lift.
+    """
+    mx = F[x, L.REST_NX]
+    my = F[x, L.REST_NY]
+    inv_m = F[x, L.INV_MASS]
+    inv_i = F[x, L.INV_INERTIA]
+    cx = F[x, L.X]
+    cy = F[x, L.Y]
+    start = I[x, L.OUTLINE_START]
+    n = I[x, L.OUTLINE_N]
+    lowest = _INF
+    for k in range(start, start + n):
+        lowest = min(lowest, OL[k, 0] * mx + OL[k, 1] * my)
+    tolerance = 1e-9 * F[x, L.REACH]
+    u_lo = _INF
+    u_hi = -_INF
+    r1 = 0.0
+    r2 = 0.0
+    for k in range(start, start + n):
+        if OL[k, 0] * mx + OL[k, 1] * my <= lowest + tolerance:
+            along = -OL[k, 0] * my + OL[k, 1] * mx
+            lever = OL[k, 0] * my - OL[k, 1] * mx  # r x m
+            if along < u_lo:
+                u_lo = along
+                r1 = lever
+            if along > u_hi:
+                u_hi = along
+                r2 = lever
+    spin = inv_i * ((px - cx) * ny - (py - cy) * nx)
+    push = inv_m * (nx * mx + ny * my)
+    v1 = push + spin * r1  # normal velocity of each end under the unit impulse
+    v2 = push + spin * r2
+    scale = 1e-12 * (abs(push) + abs(spin) * F[x, L.REACH])
+    if v1 >= -scale and v2 >= -scale:
+        return v1 > scale or v2 > scale
+    for end in range(2):
+        ra = r1 if end == 0 else r2
+        rb = r2 if end == 0 else r1
+        va = v1 if end == 0 else v2
+        vb = v2 if end == 0 else v1
+        if va < 0.0:
+            reaction = -va / (inv_m + inv_i * ra * ra)
+            if vb + reaction * (inv_m + inv_i * ra * rb) > scale:
+                return True
+    return False
+
+
 @njit(cache=True, inline="always")
-def _keeps_resting(F, I, x, dx, dy):
-    """True if resting body ``x`` keeps resting under an impulse along ``(dx, dy)``: the
-    impulse presses it into its support, which then absorbs the part along the rest
-    normal (and any turning: a body pressed flat onto its support does not tip)."""
+def _keeps_resting(F, I, OL, x, dx, dy, px, py):
+    """True if resting body ``x`` keeps resting under an impulse along ``(dx, dy)`` at
+    ``(px, py)``: the impulse presses it into its support, which then absorbs the part
+    along the rest normal and any turning, and (for a polygon) lifts no end of its base
+    (a side hit high enough tips it over instead)."""
     if I[x, L.SUPPORT] < 0:
         return False
-    return dx * F[x, L.REST_NX] + dy * F[x, L.REST_NY] <= 0.0
+    if dx * F[x, L.REST_NX] + dy * F[x, L.REST_NY] > 0.0:
+        return False
+    if I[x, L.KIND] == CIRCLE:
+        return True
+    return not _tips(F, I, OL, x, dx, dy, px, py)
 
 
 @njit(cache=True, inline="always")
@@ -219,12 +282,14 @@ def _pivot(S, a, b, px, py, nx, ny, restitution, approach):
     A polygon rocking on a corner under gravity strikes it ever more gently
     and often, converging on a contact that lasts (the body pivots), which
     has no closed form. Instead, while the contact is pressed shut
-    (``press_rate`` < 0) it leaves at no less than ``v_min = sqrt(2 |g''| h)``,
-    the speed that lifts the corner by ``h = rest_height x`` the smaller
-    bounding radius: ``max(e approach, v_min)`` when it came in faster than
-    ``v_min`` (no energy gained), else ``v_min``, a gain of at most
-    ``m |g''| h`` per such event, and the events of a pivot come at intervals of
-    about ``2 v_min / |g''|`` instead of converging. Returns True if it acted.
+    (``press_rate`` < 0), with ``v_min = sqrt(2 |g''| h)`` the speed that lifts
+    the corner by ``h = rest_height x`` the smaller bounding radius, it leaves
+    at ``max(e u, v_min)`` when it came in at ``u >= v_min``; elastically
+    (``u``) when ``_KICK v_min <= u < v_min``; and at ``v_min`` when it came in
+    slower still (a corner nearly at rest and pressed down), the only case
+    that gains energy, at most ``m |g''| h``. Slow pressed bounces therefore
+    neither converge nor gain energy, and a pivot takes events at intervals
+    of about ``2 v_min / |g''|``. Returns True if it acted.
     """
     F = S[0]
     I = S[1]
@@ -252,7 +317,13 @@ def _pivot(S, a, b, px, py, nx, ny, restitution, approach):
     leaving = ux * nx + uy * ny
     height = P[L.REST_HEIGHT] * min(F[a, L.REACH], F[b, L.REACH])
     floor = math.sqrt(-2.0 * curvature * height)
-    target = floor if approach < floor else max(restitution * approach, floor)
+    if approach >= floor:
+        target = max(restitution * approach, floor)  # never more than it came in with
+    elif approach >= _KICK * floor:
+        target = approach  # elastic: slow pressed bounces neither die out nor gain
+    else:
+        target = floor  # (nearly) at rest on a pressed corner: lift it
+
     if leaving >= target:
         return False
     ann, _, _ = _response(F, a, False, rax, ray, nx, ny, -ny, nx)
@@ -299,8 +370,8 @@ def collide(S, a, b, feature, t):
     impulse = 0.0
     count = 0
     if normal_speed < 0.0:
-        keep_a = _keeps_resting(F, I, a, nx, ny)
-        keep_b = _keeps_resting(F, I, b, -nx, -ny)
+        keep_a = _keeps_resting(F, I, S[2], a, nx, ny, px, py)
+        keep_b = _keeps_resting(F, I, S[2], b, -nx, -ny, px, py)
         if I[a, L.SUPPORT] >= 0 and not keep_a:
             detach(S, a)
             S[13][L.S_RELEASES] += 1
