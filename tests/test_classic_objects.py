@@ -194,13 +194,23 @@ def test_object_elasticity_sets_the_bounce():
 
 
 def test_rotation_state_is_stored_and_reported():
-    """rotate/rvel store the angle and angular velocity; a rotated box's corners turn with it."""
+    """rotate/rvel set the angle and angular velocity; a free body then turns at angle0 + w t, get_angle
+    reports it and its corners turn with it; a fixed rotated body keeps its angle."""
     crate = pge.box(0.4, 0.4, 0.2, 0.2, pge.white()).mass(1).rotate(math.pi / 4).rvel(2.0)
+    ramp = pge.box(0.0, 0.0, 0.3, 0.02, pge.white()).fix().rotate(-0.35)
     assert crate.get_angle() == math.pi / 4 and crate.get_rvel() == 2.0
-    pge.run(0.01)
+    pge.run(0.0)  # the bodies enter the World
     assert crate.get_angle() == math.pi / 4 and crate.get_rvel() == 2.0
     lowest = min(y for _, y in crate.body.vertices)
     assert abs(lowest - (0.5 - 0.1 * math.sqrt(2))) < 1e-12
+    pge.run(0.01)
+    angle = math.pi / 4 + 2.0 * 0.01
+    assert abs(crate.get_angle() - angle) < 1e-12 and crate.get_rvel() == 2.0
+    assert abs(crate.get_xpos() - 0.5) < 1e-12 and abs(crate.get_ypos() - 0.5) < 1e-12  # it turns about its centre
+    # a square of half-side 0.1 at angle a reaches 0.1 (|cos a| + |sin a|) below its centre
+    lowest = min(y for _, y in crate.body.vertices)
+    assert abs(lowest - (0.5 - 0.1 * (abs(math.cos(angle)) + abs(math.sin(angle))))) < 1e-12
+    assert ramp.get_angle() == -0.35 and ramp.get_rvel() == 0.0
 
 
 def test_per_object_gravity_adds_to_the_worlds():
@@ -236,17 +246,16 @@ def test_rm_removes_from_physics_and_drawing():
     assert label not in pge.classic._STATE.levels[1]
 
 
-def test_springs_raise_not_implemented():
-    """spring() and the spring methods exist and raise NotImplementedError naming springs."""
+def test_spring_methods_need_a_spring():
+    """draw, end, mid and when are spring methods: on a circle they raise TypeError (springs: test_springs.py)."""
     a = pge.circle(0.3, 0.5, 0.02, pge.white()).fix()
     b = pge.circle(0.6, 0.5, 0.02, pge.white()).mass(1)
-    with pytest.raises(NotImplementedError, match="springs"):
-        pge.spring(a, b, 100.0, 1.0)
     for call in (lambda: a.draw(pge.white(), 0.01), lambda: a.end(pge.white()), lambda: a.mid(pge.white())):
-        with pytest.raises(NotImplementedError, match="springs"):
+        with pytest.raises(TypeError, match="circle object"):
             call()
-    with pytest.raises(NotImplementedError, match="springs"):
+    with pytest.raises(TypeError, match="when: you cannot give a length callback to a circle object"):
         a.when(0.2, lambda e, s: None)
+    assert pge.spring(a, b, 100.0, 1.0).type == pge.spring_t
 
 
 def test_vector_utilities():

@@ -41,12 +41,14 @@ def floor_world(elasticity=0.5, floor_friction=0.0, **options) -> tuple[World, o
 
 
 def energy(world: World) -> float:
-    """Kinetic plus gravitational potential energy (g = G downwards, zero at y = 0) of the moving bodies."""
+    """Kinetic (translation plus rotation) plus gravitational potential energy (g = G downwards, zero at
+    y = 0) of the moving bodies."""
     total = 0.0
     for body in world.bodies:
         if not body.is_fixed:
             vx, vy = body.velocity
-            total += body.mass * (0.5 * (vx * vx + vy * vy) + G * body.position[1])
+            w = body.angular_velocity
+            total += body.mass * (0.5 * (vx * vx + vy * vy) + G * body.position[1]) + 0.5 * body.inertia * w * w
     return total
 
 

@@ -276,7 +276,7 @@ def contact_geometry(S, a, b, feature):
 
 
 @njit(cache=True)
-def _pivot(S, a, b, px, py, nx, ny, restitution, approach):
+def _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     """Keep a turning polygon's pressed contact from a Zeno run of ever smaller bounces.
 
     A polygon rocking on a corner under gravity strikes it ever more gently
@@ -289,51 +289,75 @@ def _pivot(S, a, b, px, py, nx, ny, restitution, approach):
     slower still (a corner nearly at rest and pressed down), the only case
     that gains energy, at most ``m |g''| h``. Slow pressed bounces therefore
     neither converge nor gain energy, and a pivot takes events at intervals
-    of about ``2 v_min / |g''|``. Returns True if it acted.
+    of about ``2 v_min / |g''|``. The bounce is then done again from the velocities before it
+    (``pre``), through ``contact_impulse`` with the restitution this asks for,
+    so friction and the energy guard apply as in any collision. Returns the
+    new normal impulse, or -1.0 if the rule does not apply.
     """
     F = S[0]
     I = S[1]
     P = S[3]
     if I[a, L.SUPPORT] >= 0 or I[b, L.SUPPORT] >= 0:
-        return False
+        return -1.0
     if not (spinning(F, I, a) or spinning(F, I, b)):
-        return False
-    ox = F[a, L.X] - F[b, L.X]
-    oy = F[a, L.Y] - F[b, L.Y]
-    wa = F[a, L.OMEGA] if I[a, L.KIND] != CIRCLE else 0.0
-    wb = F[b, L.OMEGA] if I[b, L.KIND] != CIRCLE else 0.0
-    curvature = press_rate(
-        px - F[b, L.X], py - F[b, L.Y], nx, ny, ox, oy,
-        F[a, L.VX] - F[b, L.VX], F[a, L.VY] - F[b, L.VY], F[a, L.AX] - F[b, L.AX], F[a, L.AY] - F[b, L.AY], wa, wb,
-    )
-    if not curvature < 0.0:
-        return False
+        return -1.0
+    va_x, va_y, wa, vb_x, vb_y, wb = pre
     rax = px - F[a, L.X]
     ray = py - F[a, L.Y]
     rbx = px - F[b, L.X]
     rby = py - F[b, L.Y]
-    ux = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
-    uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
-    leaving = ux * nx + uy * ny
-    height = P[L.REST_HEIGHT] * min(F[a, L.REACH], F[b, L.REACH])
-    floor = math.sqrt(-2.0 * curvature * height)
+    curvature = press_rate(
+        rbx, rby, nx, ny, F[a, L.X] - F[b, L.X], F[a, L.Y] - F[b, L.Y], va_x - vb_x, va_y - vb_y,
+        F[a, L.AX] - F[b, L.AX], F[a, L.AY] - F[b, L.AY],
+        wa if I[a, L.KIND] != CIRCLE else 0.0, wb if I[b, L.KIND] != CIRCLE else 0.0,
+    )
+    if not curvature < 0.0:
+        return -1.0
+    ux = va_x - wa * ray - (vb_x - wb * rby)
+    uy = va_y + wa * rax - (vb_y + wb * rbx)
+    un = ux * nx + uy * ny
+    ut = -ux * ny + uy * nx
+    approach = max(-un, 0.0)
+    floor = math.sqrt(-2.0 * curvature * P[L.REST_HEIGHT] * min(F[a, L.REACH], F[b, L.REACH]))
+    kick = False
     if approach >= floor:
         target = max(restitution * approach, floor)  # never more than it came in with
     elif approach >= _KICK * floor:
         target = approach  # elastic: slow pressed bounces neither die out nor gain
     else:
         target = floor  # (nearly) at rest on a pressed corner: lift it
-
-    if leaving >= target:
-        return False
-    ann, _, _ = _response(F, a, False, rax, ray, nx, ny, -ny, nx)
-    bnn, _, _ = _response(F, b, False, rbx, rby, nx, ny, -ny, nx)
-    if not ann + bnn > 0.0:
-        return False
-    extra = (target - leaving) / (ann + bnn)
-    _apply(F, a, False, extra * nx, extra * ny, rax, ray)
-    _apply(F, b, False, -extra * nx, -extra * ny, rbx, rby)
-    return True
+        kick = True
+    now_x = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
+    now_y = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
+    if now_x * nx + now_y * ny >= target:
+        return -1.0
+    # Bounce again from the velocities before the collision.
+    F[a, L.VX] = va_x
+    F[a, L.VY] = va_y
+    F[a, L.OMEGA] = wa
+    F[b, L.VX] = vb_x
+    F[b, L.VY] = vb_y
+    F[b, L.OMEGA] = wb
+    tx = -ny
+    ty = nx
+    ann, ant, att = _response(F, a, False, rax, ray, nx, ny, tx, ty)
+    bnn, bnt, btt = _response(F, b, False, rbx, rby, nx, ny, tx, ty)
+    knn = ann + bnn
+    if not knn > 0.0:
+        return -1.0
+    jn = 0.0
+    jt = 0.0
+    if un < 0.0:
+        jn, jt = contact_impulse(un, ut, knn, ant + bnt, att + btt, 1.0 if kick else target / approach, mu)
+    if kick:
+        leaving = un + knn * jn + (ant + bnt) * jt
+        if leaving < target:
+            jn += (target - leaving) / knn
+    jx = jn * nx + jt * tx
+    jy = jn * ny + jt * ty
+    _apply(F, a, False, jx, jy, rax, ray)
+    _apply(F, b, False, -jx, -jy, rbx, rby)
+    return jn
 
 
 @njit(cache=True)
@@ -367,6 +391,9 @@ def collide(S, a, b, feature, t):
     ux = F[a, L.VX] - wa * ray - (F[b, L.VX] - wb * rby)
     uy = F[a, L.VY] + wa * rax - (F[b, L.VY] + wb * rbx)
     normal_speed = ux * nx + uy * ny
+    pre = (F[a, L.VX], F[a, L.VY], wa, F[b, L.VX], F[b, L.VY], wb)
+    restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
+    mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
     impulse = 0.0
     count = 0
     if normal_speed < 0.0:
@@ -382,8 +409,6 @@ def collide(S, a, b, feature, t):
         bnn, bnt, btt = _response(F, b, keep_b, rbx, rby, nx, ny, tx, ty)
         knn = ann + bnn
         if knn > 0.0:
-            restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
-            mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
             impulse, tangential = contact_impulse(
                 normal_speed, ux * tx + uy * ty, knn, ant + bnt, att + btt, restitution, mu
             )
@@ -404,12 +429,15 @@ def collide(S, a, b, feature, t):
         group[count] = b
         count += 1
         S[13][L.S_RESTS] += 1
-    elif _pivot(S, a, b, px, py, nx, ny, combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE]), max(-normal_speed, 0.0)):
-        impulse = max(impulse, 1e-300)
-        for x in (a, b):
-            if I[x, L.FIXED] == 0:
-                group[count] = x
-                count += 1
+    else:
+        redone = _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre)
+        if redone >= 0.0:
+            impulse = max(redone, 1e-300)
+            count = 0
+            for x in (a, b):
+                if I[x, L.FIXED] == 0:
+                    group[count] = x
+                    count += 1
     if impulse == 0.0 and count == 0:
         # A graze: nothing changed, but look again from here.
         if I[a, L.FIXED] == 0:
