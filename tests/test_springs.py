@@ -13,6 +13,7 @@ import math
 import pytest
 from classic_support import session  # noqa: F401 (fixture of the classic-API tests)
 
+import pge
 from pge import World
 from pge.springs import LengthReached, Spring
 
@@ -217,6 +218,28 @@ def test_when_fires_once_at_the_length_shortening_then_stretching():
     assert time == pytest.approx(PERIOD / 2 + PERIOD / 3, abs=3e-4)
 
 
+def test_when_rearmed_in_its_callback_fires_at_every_crossing():
+    """A callback that asks again for the same length gets the next crossing, never the same one twice."""
+    world, _, _, spring = oscillator(displacement=0.1, interval=0.01)
+    times = {}
+
+    def arm(length):
+        def reached(event):
+            times[length].append(event.time)
+            assert abs(spring.length - length) <= 1e-12 * length  # measured: 3e-15 at worst
+            arm(length)
+
+        spring.when(length, reached)
+
+    for length in (0.22, 0.3, 0.38):
+        times[length] = []
+        arm(length)
+    world.run_until(10 * PERIOD + 0.01)
+    for length, seen in times.items():
+        assert len(seen) == 20, length  # twice per period
+        assert all(b - a > 0.01 for a, b in zip(seen, seen[1:]))
+
+
 def test_when_at_an_exact_length_waits_for_the_next_time():
     """A when() for the length the spring has right now fires when it comes back to it, not at once."""
     world, _, _, spring = oscillator(displacement=0.1, interval=0.01)
@@ -317,6 +340,21 @@ def test_a_body_on_two_springs_feels_their_sum():
     assert ball.position[0] - 0.5 == pytest.approx(0.05 * math.cos(w2 * 0.2), rel=1e-4)
 
 
+def test_two_free_bodies_keep_their_momentum_and_swing_with_the_reduced_mass():
+    """Equal and opposite forces: total momentum is kept exactly; the pair oscillates with sqrt(k / mu)."""
+    world = World()
+    a = world.add_circle((0.3, 0.5), 0.02, mass=1.0, velocity=(0.1, 0.05))
+    b = world.add_circle((0.7, 0.5), 0.02, mass=3.0, velocity=(0.1, 0.05))
+    spring = world.add_spring(a, b, 30.0, rest_length=0.3, two_sided=True)
+    world.spring_interval = 0.001
+    momentum = world.momentum()
+    mu = 1.0 * 3.0 / 4.0
+    world.run_until(0.25)
+    assert world.momentum() == pytest.approx(momentum, abs=1e-14)
+    w = math.sqrt(30.0 / mu)
+    assert spring.length - 0.3 == pytest.approx(0.1 * math.cos(w * 0.25), abs=1e-6)
+
+
 # ----------------------------------------------------------- removal, setup
 
 
@@ -335,7 +373,7 @@ def test_a_removed_body_takes_its_springs_with_it():
     assert world.springs == ()
     assert not upper.alive and not lower.alive
     with pytest.raises(ValueError, match="spring 2 has been removed"):
-        lower.length
+        _ = lower.length
     assert bottom.total_acceleration == (0.0, -g)
     y, vy, t = bottom.position[1], bottom.velocity[1], world.time
     world.run_until(0.2)
@@ -357,6 +395,46 @@ def test_remove_spring_lets_go_and_the_handle_fails_loudly():
         with pytest.raises(ValueError, match="has been removed"):
             use()
     world.run_until(0.2)  # nothing left to refresh
+
+
+def test_changing_the_interval_mid_run_refreshes_at_the_new_pace():
+    """Setting spring_interval while running refreshes now and then every new interval."""
+    world, _, _, _ = oscillator(interval=0.01)
+    world.run_until(0.055)
+    world.spring_interval = 0.002
+    system = world._springs
+    assert system._next == pytest.approx(0.057, abs=1e-12)
+    world.run_until(0.06)
+    assert system._next == pytest.approx(0.061, abs=1e-12)
+
+
+def test_a_spring_added_while_running_takes_effect_at_once():
+    """A spring made in a callback mid-run pulls from that moment."""
+    world = World()
+    anchor = world.add_circle(ANCHOR, 0.02, fixed=True)
+    ball = world.add_circle((0.5, 0.5), 0.02, mass=M, velocity=(0.5, 0.0))
+    made = []
+    world.at_time(0.1, lambda timer: made.append(world.add_spring(anchor, ball, K)))  # rest: the length then
+    world.run_until(0.1)
+    assert ball.velocity == (0.5, 0.0)
+    world.run_until(0.1 + 1e-9)
+    assert made and made[0].rest_length == pytest.approx(0.35)
+    world.run_until(0.11)
+    assert ball.total_acceleration[0] < 0.0
+    world.run_until(0.1 + PERIOD / 4)
+    assert ball.velocity[0] == pytest.approx(0.0, abs=2e-3)  # a quarter swing later it stops
+
+
+def test_a_crossing_made_by_a_call_between_refreshes_fires_by_the_next_refresh():
+    """A velocity set between refreshes is not heard of at once: a crossing it causes fires at the next
+    refresh at the latest, and once."""
+    world, _, ball, spring = oscillator(displacement=0.0, interval=0.5, two_sided=False)
+    calls = []
+    spring.when(REST - 0.05, lambda event: calls.append(event.time))
+    world.run_until(0.01)
+    ball.velocity = (-1.0, 0.0)  # reaches REST - 0.05 at t = 0.06
+    world.run_until(1.2)
+    assert len(calls) == 1 and 0.06 <= calls[0] <= 0.5 + 1e-12
 
 
 def test_interval_follows_the_frame_rate_and_validates():
@@ -467,10 +545,10 @@ def test_bad_when_input():
 # ------------------------------------------------------------ classic facade
 
 
-def test_classic_spring_when_snaps_the_rope(session):
+@pytest.mark.usefixtures("session")
+def test_classic_spring_when_snaps_the_rope():
     """A PGE-style script: spring(...).draw(...).when(l, p) calls p(event, spring) once, headless; the
     event is a function event whose id comes from the at_time counter; rm() snaps the rope."""
-    pge = session
     pge.batch()
     anchor = pge.box(0.45, 0.9, 0.1, 0.05, pge.white()).fix()
     ball = pge.circle(0.5, 0.6, 0.03, pge.rgb(1, 0, 0)).mass(1)
@@ -497,9 +575,9 @@ def test_classic_spring_when_snaps_the_rope(session):
     rope.rm()  # a second rm does nothing
 
 
-def test_classic_spring_errors(session):
+@pytest.mark.usefixtures("session")
+def test_classic_spring_errors():
     """Spring methods on other objects, springs on colours or massless objects, bad values: clear errors."""
-    pge = session
     pge.batch()
     anchor = pge.box(0.45, 0.9, 0.1, 0.05, pge.white()).fix()
     ball = pge.circle(0.5, 0.6, 0.03, pge.white()).mass(1)
@@ -514,8 +592,13 @@ def test_classic_spring_errors(session):
         pge.spring(anchor, loose, 1.0, 0.0)
     with pytest.raises(ValueError, match="two different objects"):
         pge.spring(ball, ball, 1.0, 0.0)
-    with pytest.raises(ValueError, match="stiffness must not be negative"):
+    with pytest.raises(ValueError, match="spring: k must not be negative"):
         pge.spring(anchor, ball, -1.0, 0.0)
+    with pytest.raises(ValueError, match="spring: l must not be negative"):
+        pge.spring(anchor, ball, 1.0, 0.0, -0.1)
+    with pytest.raises(TypeError, match="spring: ob2 must be a pge box or circle object"):
+        pge.spring(anchor, 3, 1.0, 0.0)
+    assert pge.classic._STATE.world.springs == ()
     rope = pge.spring(anchor, ball, 1.0, 0.0)
     with pytest.raises(TypeError, match="first parameter to draw is expected to be a colour"):
         rope.draw(0.01, pge.white())
@@ -531,9 +614,9 @@ def test_classic_spring_errors(session):
     pge.run(0.1)
 
 
-def test_classic_at_cancel_cancels_a_when(session):
+@pytest.mark.usefixtures("session")
+def test_classic_at_cancel_cancels_a_when():
     """at_cancel(id) of a when's timer id: the callback never runs."""
-    pge = session
     pge.batch()
     anchor = pge.box(0.45, 0.9, 0.1, 0.05, pge.white()).fix()
     ball = pge.circle(0.5, 0.6, 0.03, pge.white()).mass(1)
@@ -545,3 +628,50 @@ def test_classic_at_cancel_cancels_a_when(session):
     assert rope.spring.pending == ()
     pge.run(0.5)
     assert calls == []
+
+
+class _Capture:
+    """A display that keeps the polygons drawn (for the spring bands)."""
+
+    draws = True
+
+    def __init__(self):
+        self.polygons = []
+
+    def begin_frame(self, background):
+        pass
+
+    def circles(self, xs, ys, radii, colours, index=None):
+        pass
+
+    def circle(self, x, y, r, colour):
+        pass
+
+    def polygon(self, points, colour):
+        self.polygons.append((list(points), colour))
+
+    def text(self, x, y, s, colour, size):
+        pass
+
+    def end_frame(self):
+        pass
+
+
+@pytest.mark.usefixtures("session")
+def test_classic_drawn_spring_is_a_band_between_the_centres():
+    """draw(c, w): a filled 4-gon w wide from centre to centre, in c, drawn after the level-0 objects."""
+    from pge.classic import frames
+
+    pge.batch()
+    anchor = pge.circle(0.5, 0.9, 0.02, pge.white()).fix()
+    ball = pge.circle(0.5, 0.5, 0.02, pge.white()).mass(1)
+    pge.spring(anchor, ball, 10.0, 0.0).draw(pge.rgb(1, 0, 0), 0.02)
+    pge.spring(anchor, ball, 10.0, 0.0)  # never drawn: invisible
+    display = _Capture()
+    frames.compose(display)
+    assert len(display.polygons) == 1
+    points, colour = display.polygons[0]
+    assert colour == (255, 0, 0, 255)
+    expected = [(0.51, 0.9), (0.51, 0.5), (0.49, 0.5), (0.49, 0.9)]
+    flat = [v for point in sorted(points) for v in point]
+    assert flat == pytest.approx([v for point in sorted(expected) for v in point], abs=1e-12)

@@ -124,9 +124,11 @@ class Spring:
     view but ``alive`` raises ValueError.
     """
 
-    __slots__ = ("_system", "_a", "_b", "_stiffness", "_damping", "_rest_length", "_two_sided", "_watches", "number", "name")
+    __slots__ = (
+        "_system", "_a", "_b", "_stiffness", "_damping", "_rest_length", "_two_sided", "_watches", "number", "name"
+    )  # fmt: skip
 
-    def __init__(self, system, number: int, a: Body, b: Body, stiffness, damping, rest_length, two_sided, name) -> None:
+    def __init__(self, system, number, a: Body, b: Body, stiffness, damping, rest_length, two_sided, name) -> None:
         self._system = system
         self.number = number
         self._a = a

@@ -96,7 +96,7 @@ def _draw_springs(display) -> None:
     from pge.classic.springs import band
 
     for obj in STATE.springs:
-        if obj._band is None or obj.deleted or not obj._visible or obj._alpha <= 0.0:
+        if obj._band is None or obj.deleted or not obj._spring.alive or obj._alpha <= 0.0:
             continue
         corners = band(obj)
         if corners is not None:

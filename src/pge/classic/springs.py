@@ -21,10 +21,10 @@ from __future__ import annotations
 import math
 
 from pge.classic.constants import function_event, spring_t
+from pge.classic.events import event
 from pge.classic.objects import Object, Shape, _is_colour
 from pge.classic.session import STATE, finite, positive
 from pge.events import Timer
-from pge.springs import check_spring_parameters
 
 __all__ = ["SpringObject", "spring", "check_drawing", "band"]
 
@@ -59,8 +59,6 @@ class SpringObject(Object):
                 return  # cancelled with at_cancel
             if STATE.recorder is not None:
                 STATE.recorder.timer(Timer(record.time, record.watch_id))
-            from pge.classic.events import event
-
             STATE.call(callback, event(function_event, record.time, timer_id=record.watch_id), self)
 
         watch_id = self._spring.when(length, reached)
@@ -106,7 +104,9 @@ def spring(ob1, ob2, k, d, l=None):
     k = finite("spring", "k", k)
     d = finite("spring", "d", d)
     l = None if l is None else finite("spring", "l", l)
-    check_spring_parameters("spring", k, d, l, False)
+    for name, value in (("k", k), ("d", d), ("l", l)):
+        if value is not None and value < 0.0:
+            raise ValueError(f"spring: {name} must not be negative, got {value!r}")
     a = first._live()
     b = second._live()
     made = STATE.world.add_spring(a, b, k, d, l)
