@@ -270,14 +270,30 @@ class Object:
         return self
 
     def rvel(self, omega):
-        """Set the angular velocity in radians per second (stored; rotation physics comes later);
-        returns self."""
+        """Set the angular velocity in radians per second (anticlockwise); returns self."""
         shape = self._shape("rvel", "give an angular velocity to", "an angular velocity")
         omega = finite("rvel", "omega", omega)
         if shape._body is not None:
             STATE.world.set_angular_velocity(shape._body, omega)
         shape._rvel = omega
         return self
+
+    def friction(self, mu):
+        """Set the Coulomb friction coefficient (0 or more; default 0, as in the original, which
+        has no friction); returns self. Two objects' coefficients combine by the larger."""
+        shape = self._shape("friction", "give a friction to", "a friction")
+        mu = finite("friction", "mu", mu)
+        if mu < 0.0:
+            raise ValueError(f"friction: mu must not be negative, got {mu!r}")
+        if shape._body is not None:
+            STATE.world.set_friction(shape._body, mu)
+        shape._friction = mu
+        return self
+
+    def get_friction(self) -> float:
+        """The Coulomb friction coefficient."""
+        shape = self._asked("get_friction", "friction")
+        return shape._body.friction if shape._body is not None else shape._friction
 
     def get_angle(self) -> float:
         """Orientation in radians."""
@@ -472,6 +488,7 @@ class Shape(Object):
         self._own_elasticity = None
         self._angle = 0.0
         self._rvel = 0.0
+        self._friction = 0.0
         self._callback = None
         self._with = []
         self._listening = False
@@ -506,6 +523,7 @@ class Shape(Object):
             "elasticity": self._elasticity_value(),
             "angle": self._angle,
             "angular_velocity": self._rvel,
+            "friction": self._friction,
             "data": {"colour": self._colour.rgb255(), "object": self},
             "name": self._description,
         }

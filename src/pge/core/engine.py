@@ -297,10 +297,10 @@ def _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     F = S[0]
     I = S[1]
     P = S[3]
-    if I[a, L.SUPPORT] >= 0 or I[b, L.SUPPORT] >= 0:
-        return -1.0
     if not (spinning(F, I, a) or spinning(F, I, b)):
         return -1.0
+    keep_a = I[a, L.SUPPORT] >= 0  # still resting: it was pressed into its support
+    keep_b = I[b, L.SUPPORT] >= 0
     va_x, va_y, wa, vb_x, vb_y, wb = pre
     rax = px - F[a, L.X]
     ray = py - F[a, L.Y]
@@ -340,8 +340,8 @@ def _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     F[b, L.OMEGA] = wb
     tx = -ny
     ty = nx
-    ann, ant, att = _response(F, a, False, rax, ray, nx, ny, tx, ty)
-    bnn, bnt, btt = _response(F, b, False, rbx, rby, nx, ny, tx, ty)
+    ann, ant, att = _response(F, a, keep_a, rax, ray, nx, ny, tx, ty)
+    bnn, bnt, btt = _response(F, b, keep_b, rbx, rby, nx, ny, tx, ty)
     knn = ann + bnn
     if not knn > 0.0:
         return -1.0
@@ -355,8 +355,8 @@ def _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
             jn += (target - leaving) / knn
     jx = jn * nx + jt * tx
     jy = jn * ny + jt * ty
-    _apply(F, a, False, jx, jy, rax, ray)
-    _apply(F, b, False, -jx, -jy, rbx, rby)
+    _apply(F, a, keep_a, jx, jy, rax, ray)
+    _apply(F, b, keep_b, -jx, -jy, rbx, rby)
     return jn
 
 
