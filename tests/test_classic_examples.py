@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-NAMES = ["ball_in_a_box", "breakout", "bagatelle", "snooker", "matchsticks", "rotation", "springs_chain"]
+NAMES = ["ball_in_a_box", "breakout", "bagatelle", "snooker", "matchsticks", "rotation", "springs_chain", "toppling"]
 
 
 @pytest.fixture(scope="module")
@@ -118,6 +118,17 @@ def test_springs_chain(results):
     assert 0.0 < float(fields["snap_time"]) < 1.0
     assert 0.05 - 1e-9 <= float(fields["jumper_y"]) < 0.3
     assert float(fields["time"]) == 20.0
+
+
+def test_toppling(results):
+    """The ball knocked the block over onto its side, the dropped crates, plank and wedge settled, every body
+    rests and nothing happened for the last seconds; no overlaps."""
+    fields = ran(results, "toppling")
+    assert fields["toppled"] == "True"
+    assert abs(abs(float(fields["block_angle"])) - 1.5707963267948966) < 1e-6
+    assert fields["resting"] == "5/5" and fields["quiet"] == "True"
+    assert int(fields["overlaps"]) == 0
+    assert float(fields["time"]) == 6.0
 
 
 @pytest.mark.parametrize("command", [["-m", "pge.classic"], ["-m", "pge.cli", "run"]])

@@ -770,6 +770,14 @@ class World:
             if code == L.NEED_SPACE:
                 state.ensure_events(0)
                 continue
+            if code == L.STORM:
+                a = self._handles.get(int(out[L.OUT_A]))
+                b = self._handles.get(int(out[L.OUT_B]))
+                raise RuntimeError(
+                    f"event storm: {L.STORM_LIMIT} collisions at time {float(out[L.OUT_TIME])!r} without time "
+                    f"moving on, the last between {a.label() if a else '?'} and {b.label() if b else '?'}; "
+                    "this is an engine bug, please report the scene"
+                )
             record = None
             if code == L.COLLIDED:
                 a = self._handles.get(int(out[L.OUT_A]))

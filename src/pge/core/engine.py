@@ -123,10 +123,10 @@ def release_body(S, i, t, out):
 
 
 @njit(cache=True)
-def _tips(F, I, OL, x, nx, ny, px, py):
-    """True if an impulse along ``(nx, ny)`` at ``(px, py)`` lifts an end of resting
-    polygon ``x``'s base off its support (it tips or flies), False if the support holds
-    the base down.
+def _lift_rate(F, I, OL, x, nx, ny, px, py):
+    """How fast an impulse along ``(nx, ny)`` at ``(px, py)`` lifts an end of resting
+    polygon ``x``'s base off its support, per unit of impulse (0: the support holds the
+    base down; then the body only slides).
 
     The base's ends are the polygon's extreme corners on the support side.
     The ends' normal velocities are linear in the impulse, so a unit impulse
@@ -165,7 +165,7 @@ def _tips(F, I, OL, x, nx, ny, px, py):
     v2 = push + spin * r2
     scale = 1e-12 * (abs(push) + abs(spin) * F[x, L.REACH])
     if v1 >= -scale and v2 >= -scale:
-        return v1 > scale or v2 > scale
+        return max(v1, v2, 0.0)
     for end in range(2):
         ra = r1 if end == 0 else r2
         rb = r2 if end == 0 else r1
@@ -173,24 +173,40 @@ def _tips(F, I, OL, x, nx, ny, px, py):
         vb = v2 if end == 0 else v1
         if va < 0.0:
             reaction = -va / (inv_m + inv_i * ra * ra)
-            if vb + reaction * (inv_m + inv_i * ra * rb) > scale:
-                return True
-    return False
+            lift = vb + reaction * (inv_m + inv_i * ra * rb)
+            if lift > scale:
+                return lift
+    return 0.0
 
 
-@njit(cache=True, inline="always")
-def _keeps_resting(F, I, OL, x, dx, dy, px, py):
+@njit(cache=True)
+def _keeps_resting(F, I, OL, x, dx, dy, px, py, approach, rest_height):
     """True if resting body ``x`` keeps resting under an impulse along ``(dx, dy)`` at
-    ``(px, py)``: the impulse presses it into its support, which then absorbs the part
-    along the rest normal and any turning, and (for a polygon) lifts no end of its base
+    ``(px, py)`` from a contact closing at ``approach``: the impulse presses it into its
+    support, which then absorbs the part along the rest normal and any turning, and (for
+    a polygon) lifts no end of its base faster than a bounce of the rest height would
     (a side hit high enough tips it over instead)."""
     if I[x, L.SUPPORT] < 0:
         return False
-    if dx * F[x, L.REST_NX] + dy * F[x, L.REST_NY] > 0.0:
+    mx = F[x, L.REST_NX]
+    my = F[x, L.REST_NY]
+    if dx * mx + dy * my > 0.0:
         return False
     if I[x, L.KIND] == CIRCLE:
         return True
-    return not _tips(F, I, OL, x, dx, dy, px, py)
+    rate = _lift_rate(F, I, OL, x, dx, dy, px, py)
+    if rate == 0.0:
+        return True
+    # The impulse is at most (1 + e) approach / k with k the body's own share of the
+    # contact-space inverse mass along the normal.
+    rn = (px - F[x, L.X]) * dy - (py - F[x, L.Y]) * dx
+    own = F[x, L.INV_MASS] + F[x, L.INV_INERTIA] * rn * rn
+    if not own > 0.0:
+        return True
+    s = I[x, L.SUPPORT]
+    pressing = -((F[x, L.FREE_AX] - F[s, L.AX]) * mx + (F[x, L.FREE_AY] - F[s, L.AY]) * my)
+    settle = math.sqrt(2.0 * max(pressing, 0.0) * rest_height * F[x, L.REACH])
+    return rate * 2.0 * approach / own <= settle
 
 
 @njit(cache=True, inline="always")
@@ -397,8 +413,8 @@ def collide(S, a, b, feature, t):
     impulse = 0.0
     count = 0
     if normal_speed < 0.0:
-        keep_a = _keeps_resting(F, I, S[2], a, nx, ny, px, py)
-        keep_b = _keeps_resting(F, I, S[2], b, -nx, -ny, px, py)
+        keep_a = _keeps_resting(F, I, S[2], a, nx, ny, px, py, -normal_speed, S[3][L.REST_HEIGHT])
+        keep_b = _keeps_resting(F, I, S[2], b, -nx, -ny, px, py, -normal_speed, S[3][L.REST_HEIGHT])
         if I[a, L.SUPPORT] >= 0 and not keep_a:
             detach(S, a)
             S[13][L.S_RELEASES] += 1
@@ -501,7 +517,8 @@ def run(S, until, notify_all):
     COLLIDED: a collision that Python must hear about (``notify_all`` or a
     body flagged NOTIFY); its record is in ``out``. FIRED_TIMER, FIRED_FRAME:
     ``out[OUT_ID]`` names it. NEED_SPACE: grow the event arrays, call again.
-    EMPTY: no events are left.
+    EMPTY: no events are left. STORM: ``STORM_LIMIT`` collisions in a row
+    at one instant (a zero-time loop; ``out`` names the last pair).
     """
     I = S[1]
     P = S[3]
@@ -512,6 +529,8 @@ def run(S, until, notify_all):
     slot_data = S[11]
     stats = S[13]
     out = S[14]
+    instant = -_INF
+    repeats = 0
     while True:
         if not drain_predictions(S) or Q[L.FREE_N] < Q[L.MIN_FREE]:
             return L.NEED_SPACE
@@ -533,6 +552,16 @@ def run(S, until, notify_all):
                 continue
             P[L.TIME] = t
             stats[L.S_EVENTS] += 1
+            if t == instant:
+                repeats += 1
+                if repeats >= L.STORM_LIMIT:
+                    out[L.OUT_TIME] = t
+                    out[L.OUT_A] = a
+                    out[L.OUT_B] = b
+                    return L.STORM
+            else:
+                instant = t
+                repeats = 0
             if collide(S, a, b, feature, t) == 0.0:
                 stats[L.S_GRAZES] += 1
                 continue
