@@ -775,7 +775,7 @@ class World:
                 b = self._handles.get(int(out[L.OUT_B]))
                 raise RuntimeError(
                     f"event storm: {L.STORM_LIMIT} collisions at time {float(out[L.OUT_TIME])!r} without time "
-                    f"moving on, the last between {a.label() if a else '?'} and {b.label() if b else '?'}; "
+                    f"moving on, the last between {a.label() if a is not None else '?'} and {b.label() if b is not None else '?'}; "
                     "this is an engine bug, please report the scene"
                 )
             record = None

@@ -286,6 +286,47 @@ def release_riders(S, s, out, count, t):
 
 
 @njit(cache=True)
+def resettle_riders(S, s, dvx, dvy, out, count, t):
+    """Carry the bodies resting on ``s`` (directly or through others) over a change of
+    ``s``'s acceleration that leaves its motion continuous (it stopped sliding).
+
+    Each rider takes ``s``'s velocity change ``(dvx, dvy)`` (rounding only), so its
+    relative motion is kept exactly, and its acceleration is settled afresh; one that
+    is no longer pressed on is released with all that rests on it. The riders are
+    advanced to ``t`` and appended to ``out`` from ``count``; returns the new count.
+    """
+    F = S[0]
+    I = S[1]
+    stats = S[13]
+    start = count
+    r = I[s, L.RIDER_HEAD]
+    while r >= 0:
+        out[count] = r
+        count += 1
+        r = I[r, L.RIDER_NEXT]
+    k = start
+    while k < count:
+        r = out[k]
+        k += 1
+        if I[r, L.SUPPORT] < 0:
+            continue  # released with its support below
+        advance(F, r, t)
+        F[r, L.VX] += dvx
+        F[r, L.VY] += dvy
+        if settle_acceleration(S, r, t):
+            child = I[r, L.RIDER_HEAD]
+            while child >= 0:
+                out[count] = child
+                count += 1
+                child = I[child, L.RIDER_NEXT]
+        else:
+            detach(S, r)
+            stats[L.S_RELEASES] += 1
+            count = release_riders(S, r, out, count, t)
+    return count
+
+
+@njit(cache=True)
 def _contact_span(S, r, t):
     """Where the flat contact of rider ``r`` lies along its edge at ``t``.
 

@@ -24,6 +24,7 @@ from pge.core.contact import (
     combine,
     detach,
     release_riders,
+    resettle_riders,
     schedule_contact_event,
     settle_acceleration,
     try_rest,
@@ -31,7 +32,7 @@ from pge.core.contact import (
 from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
 from pge.core.motion import advance, orient, state_at
-from pge.core.predict import new_mark, place, predict, spinning
+from pge.core.predict import new_mark, place, predict
 from pge.core.queue import pop_earliest
 from pge.toi.circle_circle import circle_circle_contact
 from pge.toi.circle_polygon import circle_polygon_contact, closest_feature
@@ -183,20 +184,23 @@ def _lift_rate(F, I, OL, x, nx, ny, px, py):
 def _keeps_resting(F, I, OL, x, dx, dy, px, py, approach, rest_height):
     """True if resting body ``x`` keeps resting under an impulse along ``(dx, dy)`` at
     ``(px, py)`` from a contact closing at ``approach``: the impulse presses it into its
-    support, which then absorbs the part along the rest normal and any turning, and (for
-    a polygon) lifts no end of its base faster than a bounce of the rest height would
-    (a side hit high enough tips it over instead)."""
+    support (which then absorbs the part along the rest normal and any turning) without
+    lifting an end of a polygon's base, or it lifts the body slower than a bounce of the
+    rest height would (the rest rule would bring it straight back). Otherwise it is
+    released: pulled off its support, or tipped over by a side hit high enough."""
     if I[x, L.SUPPORT] < 0:
         return False
     mx = F[x, L.REST_NX]
     my = F[x, L.REST_NY]
-    if dx * mx + dy * my > 0.0:
-        return False
+    along = dx * mx + dy * my
     if I[x, L.KIND] == CIRCLE:
-        return True
-    rate = _lift_rate(F, I, OL, x, dx, dy, px, py)
-    if rate == 0.0:
-        return True
+        if along <= 0.0:
+            return True
+        rate = F[x, L.INV_MASS] * along
+    else:
+        rate = _lift_rate(F, I, OL, x, dx, dy, px, py)
+        if rate == 0.0:
+            return True
     # The impulse is at most (1 + e) approach / k with k the body's own share of the
     # contact-space inverse mass along the normal.
     rn = (px - F[x, L.X]) * dy - (py - F[x, L.Y]) * dx
@@ -293,11 +297,12 @@ def contact_geometry(S, a, b, feature):
 
 @njit(cache=True)
 def _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
-    """Keep a turning polygon's pressed contact from a Zeno run of ever smaller bounces.
+    """Keep a pressed contact that cannot rest from a Zeno run of ever smaller bounces.
 
     A polygon rocking on a corner under gravity strikes it ever more gently
     and often, converging on a contact that lasts (the body pivots), which
-    has no closed form. Instead, while the contact is pressed shut
+    has no closed form; so does a body wedged between two others that each
+    rest on something else. Instead, while the contact is pressed shut
     (``press_rate`` < 0), with ``v_min = sqrt(2 |g''| h)`` the speed that lifts
     the corner by ``h = rest_height x`` the smaller bounding radius, it leaves
     at ``max(e u, v_min)`` when it came in at ``u >= v_min``; elastically
@@ -313,8 +318,6 @@ def _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     F = S[0]
     I = S[1]
     P = S[3]
-    if not (spinning(F, I, a) or spinning(F, I, b)):
-        return -1.0
     keep_a = I[a, L.SUPPORT] >= 0  # still resting: it was pressed into its support
     keep_b = I[b, L.SUPPORT] >= 0
     va_x, va_y, wa, vb_x, vb_y, wb = pre
@@ -436,7 +439,17 @@ def collide(S, a, b, feature, t):
             if _apply(F, b, keep_b, -jx, -jy, rbx, rby):
                 group[count] = b
                 count += 1
-    # The slower of a bounce may come to rest on the other.
+    # The impulse changed these bodies: keep or end their own rest, and release what
+    # rests on them.
+    changed = count
+    for k in range(changed):
+        x = group[k]
+        if I[x, L.SUPPORT] >= 0 and not settle_acceleration(S, x, t):
+            detach(S, x)
+            S[13][L.S_RELEASES] += 1
+        count = release_riders(S, x, group, count, t)
+    # Then the slower of a bounce may come to rest on the other (after the releases, so
+    # that a rider settling on a support the impulse just nudged is not let go again).
     if try_rest(S, a, b, nx, ny, owner, edge, px, py, t):
         group[count] = a
         count += 1
@@ -449,11 +462,14 @@ def collide(S, a, b, feature, t):
         redone = _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre)
         if redone >= 0.0:
             impulse = max(redone, 1e-300)
-            count = 0
             for x in (a, b):
                 if I[x, L.FIXED] == 0:
                     group[count] = x
                     count += 1
+                    if I[x, L.SUPPORT] >= 0 and not settle_acceleration(S, x, t):
+                        detach(S, x)
+                        S[13][L.S_RELEASES] += 1
+                    count = release_riders(S, x, group, count, t)
     if impulse == 0.0 and count == 0:
         # A graze: nothing changed, but look again from here.
         if I[a, L.FIXED] == 0:
@@ -462,13 +478,6 @@ def collide(S, a, b, feature, t):
         if I[b, L.FIXED] == 0:
             group[count] = b
             count += 1
-    changed = count
-    for k in range(changed):
-        x = group[k]
-        if I[x, L.SUPPORT] >= 0 and not settle_acceleration(S, x, t):
-            detach(S, x)
-            S[13][L.S_RELEASES] += 1
-        count = release_riders(S, x, group, count, t)
     touch_group(S, group, count)
     out[L.OUT_TIME] = t
     out[L.OUT_A] = a
@@ -497,11 +506,17 @@ def contact_change(S, r, what, t):
         detach(S, r)
         S[13][L.S_RELEASES] += 1
     else:
+        dvx = F[s, L.VX] - F[r, L.VX]
+        dvy = F[s, L.VY] - F[r, L.VY]
         F[r, L.VX] = F[s, L.VX]
         F[r, L.VY] = F[s, L.VY]
-        if not settle_acceleration(S, r, t):
-            detach(S, r)
-            S[13][L.S_RELEASES] += 1
+        if settle_acceleration(S, r, t):
+            # Its motion stays continuous: what rests on it keeps resting, re-settled.
+            count = resettle_riders(S, r, dvx, dvy, group, count, t)
+            touch_group(S, group, count)
+            return
+        detach(S, r)
+        S[13][L.S_RELEASES] += 1
     count = release_riders(S, r, group, count, t)
     touch_group(S, group, count)
 

@@ -55,6 +55,8 @@ __all__ = [
 
 _MAX_REFINE_STEPS = 200
 _INF = math.inf
+#: a non-positive gap value this small against the other coefficients is touching, to rounding
+_TOUCHING = 1e-12
 
 
 @njit(cache=True)
@@ -185,6 +187,11 @@ def first_descent_quadratic(c0, c1, c2, horizon, immediate):
             return _INF
         disc = c1 * c1 - 4.0 * c2 * c0
         if disc <= 0.0:
+            # The gap never opens. Touching to rounding and pressed, separating too slowly
+            # to get clear: it closes again from its peak on.
+            if immediate and c0 >= -_TOUCHING * max(abs(c1), abs(c2)):
+                t = c1 / (-2.0 * c2)
+                return t if t <= horizon else _INF
             return _INF
         t = (c1 + math.sqrt(disc)) / (-2.0 * c2)
         return _not_late(t, c0, c1, c2, 0.0, 0.0, 0.0) if t <= horizon else _INF
@@ -323,5 +330,15 @@ def first_descent(c0, c1, c2, c3, c4, horizon, immediate):
         if p_left > 0.0 and p_right <= 0.0:
             t = _refine(c0, c1, c2, c3, c4, left, right, p_left, p_right)
             return _not_late(t, c0, c1, c2, c3, c4, 0.0)
+        if (
+            k == 0
+            and immediate
+            and count > 0
+            and p_right <= 0.0
+            and -_TOUCHING * max(abs(c1), abs(c2), abs(c3), abs(c4)) <= c0 <= 0.0
+        ):
+            # Touching to rounding and separating too slowly to get clear before the gap
+            # turns down at its first peak: it closes again from there.
+            return right
         left, p_left = right, p_right
     return _INF

@@ -81,7 +81,8 @@ def polygon_polygon(dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, start_b, 
             best_s = s
             best_f = f
     closing = faces[best_f, 0] * dvx + faces[best_f, 1] * dvy
-    if best_s <= 0.0 and (closing < 0.0 or (closing == 0.0 and faces[best_f, 0] * dax + faces[best_f, 1] * day < 0.0)):
+    pressing = faces[best_f, 0] * dax + faces[best_f, 1] * day
+    if best_s <= 0.0 and (closing < 0.0 or (closing == 0.0 and pressing < 0.0)):
         return 0.0, best_f
     reach = 0.0
     for k in range(n_a):
@@ -89,6 +90,12 @@ def polygon_polygon(dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, start_b, 
     for k in range(n_b):
         reach = max(reach, math.hypot(outline[start_b + k, 0], outline[start_b + k, 1]))
     tolerance = _EXTENT_TOLERANCE * reach
+    if -tolerance <= best_s <= 0.0 and pressing < 0.0 and closing * closing <= 2.0 * pressing * best_s:
+        # Touching to rounding, pressed, and separating too slowly for the gap ever to
+        # open: the contact closes again from the gap's peak on.
+        t = closing / -pressing
+        if t <= horizon:
+            return t, best_f
     hax = 0.5 * dax
     hay = 0.5 * day
     best_t = horizon

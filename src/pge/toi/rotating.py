@@ -522,14 +522,20 @@ def rotating_search(
         noise = _rounding(scale, angle_a, angle_b, motion, lo)
         eps = _TOUCH * noise
         margin = _MARGIN * noise
+        sinking = -1
         if escape:
             escape = False
             for f in range(count):
                 if band[f]:
                     if value[f] > eps:
                         band[f] = False  # this part of the old contact has opened
+                    elif value[f] < -eps and lo > 0.0:
+                        sinking = f  # it went in instead of opening: a new contact
                     else:
                         escape = True
+        if sinking >= 0:
+            found = True
+            break
         gap = _INF
         nearest = -1
         for f in range(count):
@@ -565,11 +571,18 @@ def rotating_search(
             else:
                 curvature = _INF
             if band[f]:
+                # A touching feature may open (and must not close again unseen) or, pressed
+                # or turned in, sink: step no further than it could reach -eps.
+                deeper = value[f] + eps
                 if value[f] < 0.0:
-                    # inside: it must first come out, then cannot open and close unseen
                     s = lipschitz_step(-value[f], speed + spin, accel) + excursion_step(0.0, curvature, eps)
                 else:
                     s = excursion_step(rate[f], curvature, eps)
+                if deeper > 0.0:
+                    sink = lipschitz_step(deeper, speed + spin, accel)
+                    if bounded:
+                        sink = max(sink, min(h, curvature_step(deeper, rate[f], curvature)))
+                    s = min(s, sink)
             else:
                 s = lipschitz_step(value[f] - margin, speed + spin, accel)
                 if bounded:
