@@ -21,7 +21,7 @@ from pge.core import engine, grid, motion, queue
 from pge.core import layout as L
 from pge.core.state import EngineState
 from pge.events import Collision, Frame, Stop, Timer
-from pge.geometry import check_number, check_vector, rotate_points
+from pge.geometry import check_number, check_vector
 from pge.response import RESTITUTION_RULES, restitution_rule
 from pge.shapes import Circle, Polygon
 from pge.toi import CIRCLE, POLYGON, outline_rows

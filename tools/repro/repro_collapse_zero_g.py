@@ -3,7 +3,7 @@ the floor nearby) collide ever faster around t = 0.644567239 (inelastic collapse
 gravity there is no resting contact to end it). At a0d1512 run_until(1.0) ends after ~20 s
 of computing with RuntimeError("event storm: 1000000 collisions at time 0.6445672390096088
 ...", last between circle 6 and circle 8). Expected: it returns."""
-from pge import World, Collision
+from pge import World
 h = float.fromhex
 world = World(gravity=(0.0, 0.0), elasticity=1.0, frame_rate=None)
 bodies = {}

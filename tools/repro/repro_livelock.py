@@ -8,7 +8,6 @@ At d2126de run_until never returned; at a0d1512 the storm watchdog raises Runtim
 ("event storm: 1000000 collisions at time 0.04165650529550962 ...").
 Without friction, or without the initial spins, it does not happen.
 """
-import sys
 from pge import World
 w = World(gravity=(0.0, -9.81), elasticity=0.0, bounds=(0, 0, 1, 1))
 a = w.add_circle((0.2979906630636345, 0.9082176500196211), 0.03989288880633947, mass=1.760694019126658,

@@ -2,7 +2,7 @@
 floor, touching circle 4; at the collision that settles it, it is turned about its contact corner
 until its edge lies flat (_settle_turning) and that turn pushes it 2.4e-7 into circle 4.
 Expected: no overlap (the settle turn must not move the body into a neighbour). e < 1, gravity, no friction."""
-from pge import World, Collision
+from pge import World
 h = float.fromhex
 world = World(gravity=(0.0, -9.81), elasticity=1.0, frame_rate=10.0)
 bodies = {}

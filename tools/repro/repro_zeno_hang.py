@@ -3,7 +3,7 @@ spinning polygons beside them) accumulates at t = 0.58720628807959...: the pendi
 collision times converge geometrically until time stops moving. At db1be72 run_until never
 returned; at a0d1512 the new storm watchdog raises RuntimeError("event storm: 1000000
 collisions ..."). Expected: run_until(1.0) returns (the pair comes to rest or separates)."""
-from pge import World, Collision
+from pge import World
 h = float.fromhex
 world = World(gravity=(0.0, -9.81), elasticity=1.0, frame_rate=None)
 bodies = {}

@@ -255,6 +255,18 @@ def detach(S, r):
 
 
 @njit(cache=True, inline="always")
+def append_riders(I, s, out, count):
+    """Append the bodies resting directly on ``s`` to ``out`` from ``count``; returns the
+    new count."""
+    r = I[s, L.RIDER_HEAD]
+    while r >= 0:
+        out[count] = r
+        count += 1
+        r = I[r, L.RIDER_NEXT]
+    return count
+
+
+@njit(cache=True, inline="always")
 def release_riders(S, s, out, count, t):
     """Release every body resting on ``s``, directly or through others.
 
@@ -264,22 +276,13 @@ def release_riders(S, s, out, count, t):
     F = S[0]
     I = S[1]
     stats = S[13]
-    start = count
-    r = I[s, L.RIDER_HEAD]
-    while r >= 0:
-        out[count] = r
-        count += 1
-        r = I[r, L.RIDER_NEXT]
-    k = start
+    k = count
+    count = append_riders(I, s, out, count)
     while k < count:
         r = out[k]
         k += 1
         advance(F, r, t)
-        child = I[r, L.RIDER_HEAD]
-        while child >= 0:
-            out[count] = child
-            count += 1
-            child = I[child, L.RIDER_NEXT]
+        count = append_riders(I, r, out, count)
         detach(S, r)
         stats[L.S_RELEASES] += 1
     return count
@@ -298,13 +301,8 @@ def resettle_riders(S, s, dvx, dvy, out, count, t):
     F = S[0]
     I = S[1]
     stats = S[13]
-    start = count
-    r = I[s, L.RIDER_HEAD]
-    while r >= 0:
-        out[count] = r
-        count += 1
-        r = I[r, L.RIDER_NEXT]
-    k = start
+    k = count
+    count = append_riders(I, s, out, count)
     while k < count:
         r = out[k]
         k += 1
@@ -314,11 +312,7 @@ def resettle_riders(S, s, dvx, dvy, out, count, t):
         F[r, L.VX] += dvx
         F[r, L.VY] += dvy
         if settle_acceleration(S, r, t):
-            child = I[r, L.RIDER_HEAD]
-            while child >= 0:
-                out[count] = child
-                count += 1
-                child = I[child, L.RIDER_NEXT]
+            count = append_riders(I, r, out, count)
         else:
             detach(S, r)
             stats[L.S_RELEASES] += 1
