@@ -31,6 +31,7 @@ from numba import njit
 from pge.core import layout as L
 from pge.core.motion import advance, orient, state_at
 from pge.core.queue import push
+from pge.core.response import apply_impulse, contact_response
 from pge.numerics.roots import first_descent_quadratic
 
 _INF = math.inf
@@ -168,8 +169,14 @@ def _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
     sn = math.sin(delta)
     ox = cx - qx
     oy = cy - qy
-    F[r, L.X] = qx + c * ox - sn * oy
-    F[r, L.Y] = qy + sn * ox + c * oy
+    new_x = qx + c * ox - sn * oy
+    new_y = qy + sn * ox + c * oy
+    # Turning must not raise the centroid against the pressing acceleration by more
+    # than the spin it stops could pay for (else the body tips the other way).
+    if -an * ((new_x - cx) * mx + (new_y - cy) * my) > 0.5 * omega * omega * inertia:
+        return False
+    F[r, L.X] = new_x
+    F[r, L.Y] = new_y
     F[r, L.ANGLE] += delta
     F[r, L.OMEGA] = 0.0
     orient(F, I, OL, S[18], r, t)
@@ -177,22 +184,24 @@ def _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
 
 
 @njit(cache=True)
-def try_rest(S, r, s, mx, my, owner, edge, px, py, t):
+def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
     """Let rider ``r`` come to rest on ``s`` after a bounce, if it qualifies.
 
     ``(mx, my)`` is the unit contact normal from ``s`` towards ``r`` and
     ``(px, py)`` the contact point; ``owner``/``edge`` name the edge carrying
     a flat contact (``owner = -1`` for a curved one). Both bodies are at time
     ``t``. A turning polygon must first settle flat (``_settle_turning``).
-    Returns True if ``r`` now rests (its motion changed).
+    Returns ``(rested, count)``: whether ``r`` now rests; the bodies whose
+    motion changed (``r``, and a movable support with what rested on it) are
+    appended to ``out`` from index ``count``.
     """
     F = S[0]
     I = S[1]
     P = S[3]
     if I[r, L.FIXED] != 0 or I[r, L.SUPPORT] >= 0 or not grounded(I, s):
-        return False
+        return False, count
     if I[s, L.KIND] != 0 and F[s, L.OMEGA] != 0.0:
-        return False
+        return False, count
     rel_vx = F[r, L.VX] - F[s, L.VX]
     rel_vy = F[r, L.VY] - F[s, L.VY]
     rel_ax = F[r, L.FREE_AX] - F[s, L.AX]
@@ -200,18 +209,42 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t):
     vn = rel_vx * mx + rel_vy * my
     an = rel_ax * mx + rel_ay * my
     if not an < 0.0:
-        return False
+        return False, count
     height = P[L.REST_HEIGHT] * F[r, L.REACH]
     if vn > 0.0 and vn * vn > -2.0 * an * height:
-        return False
+        return False, count
     if I[r, L.KIND] != 0 and F[r, L.OMEGA] != 0.0:
         if not _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
-            return False
+            return False, count
     if owner < 0:
         vt = -rel_vx * my + rel_vy * mx
         at = -rel_ax * my + rel_ay * mx
         if abs(vt) > _BALANCE_TOLERANCE * abs(vn) + 1e-300 or abs(at) > _BALANCE_TOLERANCE * abs(an):
             owner = CURVED_STEPPING
+    # Stop the relative normal motion with a plastic impulse, of which a support that can
+    # move along m takes its share (then what rests on it is let go first): coming to
+    # rest conserves momentum and never gains energy, even on a moving support.
+    vn = (F[r, L.VX] - F[s, L.VX]) * mx + (F[r, L.VY] - F[s, L.VY]) * my
+    keep_s = I[s, L.SUPPORT] >= 0
+    turns_s = not keep_s or I[s, L.KIND] == 0
+    rsx = px - F[s, L.X]
+    rsy = py - F[s, L.Y]
+    k_s = 0.0
+    if I[s, L.FIXED] == 0 and (not keep_s or mx * F[s, L.REST_NX] + my * F[s, L.REST_NY] >= 0.0):
+        k_s = contact_response(F, s, keep_s, turns_s, rsx, rsy, mx, my, -my, mx)[0]
+    k_r = F[r, L.INV_MASS]
+    if k_s > 1e-12 * k_r and vn != 0.0:
+        j = -vn / (k_r + k_s)
+        count = release_riders(S, s, out, count, t)
+        if apply_impulse(F, s, keep_s, turns_s, -j * mx, -j * my, rsx, rsy):
+            out[count] = s
+            count += 1
+            if keep_s and not settle_acceleration(S, s, t):
+                detach(S, s)
+                S[13][L.S_RELEASES] += 1
+        F[r, L.VX] += j * k_r * mx
+        F[r, L.VY] += j * k_r * my
+        vn = (F[r, L.VX] - F[s, L.VX]) * mx + (F[r, L.VY] - F[s, L.VY]) * my
     F[r, L.VX] -= vn * mx
     F[r, L.VY] -= vn * my
     F[r, L.REST_NX] = mx
@@ -225,10 +258,11 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t):
     if first >= 0:
         I[first, L.RIDER_PREV] = r
     I[s, L.RIDER_HEAD] = r
+    out[count] = r  # its motion changed either way
     if not settle_acceleration(S, r, t):
         detach(S, r)
-        return False
-    return True
+        return False, count + 1
+    return True, count + 1
 
 
 @njit(cache=True, inline="always")
@@ -383,8 +417,9 @@ def schedule_contact_event(S, r):
                 first_descent_quadratic(high, dv, da, _INF, True),
                 first_descent_quadratic(length - low, -dv, -da, _INF, True),
             )
-        if best == 0.0 and I[other, L.KIND] == 0:
-            # A circle at the very end of its edge, moving off. Fast enough to clear the
+        if now + best == now and I[other, L.KIND] == 0:
+            # A circle at the very end of its edge (to rounding: leaving could not move
+            # time on), moving off. Fast enough to clear the
             # corner (v^2 >= a_n R) it flies; slower, the corner carries it on as a
             # curved contact (leaving at once would only bring it straight back).
             vt, _, an = relative_tangential(S, r, now)

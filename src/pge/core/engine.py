@@ -32,17 +32,17 @@ from pge.core.contact import (
 from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
 from pge.core.motion import advance, orient, state_at
+from pge.core.pivot import pivot
 from pge.core.predict import new_mark, place, predict
+from pge.core.response import apply_impulse, contact_response
 from pge.core.queue import pop_earliest
 from pge.toi.circle_circle import circle_circle_contact
 from pge.toi.circle_polygon import circle_polygon_contact, closest_feature
 from pge.toi.polygon_polygon import minkowski_faces, polygon_polygon_contact
-from pge.toi.rotating import press_rate, rotating_polygon_polygon_contact
+from pge.toi.rotating import rotating_polygon_polygon_contact
 
 _INF = math.inf
 CIRCLE = 0
-#: a pressed corner slower than this fraction of the pivot speed is lifted to it
-_KICK = 0.1
 
 
 # ---------------------------------------------------------------- work list
@@ -213,45 +213,6 @@ def _keeps_resting(F, I, OL, x, dx, dy, px, py, approach, rest_height):
     return rate * 2.0 * approach / own <= settle
 
 
-@njit(cache=True, inline="always")
-def _response(F, x, keep, rx, ry, nx, ny, tx, ty):
-    """Body ``x``'s share ``(k_nn, k_nt, k_tt)`` of the contact-space inverse mass at lever
-    arm ``(rx, ry)``, normal ``n`` and tangent ``t``; a body kept resting moves only
-    across its rest normal and does not turn."""
-    m = F[x, L.INV_MASS]
-    if keep:
-        mx = F[x, L.REST_NX]
-        my = F[x, L.REST_NY]
-        pn = nx * mx + ny * my
-        pt = tx * mx + ty * my
-        return m * (1.0 - pn * pn), -m * pn * pt, m * (1.0 - pt * pt)
-    inertia = F[x, L.INV_INERTIA]
-    rn = rx * ny - ry * nx
-    rt = rx * ty - ry * tx
-    return m + inertia * rn * rn, inertia * rn * rt, m + inertia * rt * rt
-
-
-@njit(cache=True, inline="always")
-def _apply(F, x, keep, jx, jy, rx, ry):
-    """Give body ``x`` the impulse ``(jx, jy)`` at lever arm ``(rx, ry)``; True if its
-    motion changed."""
-    if keep:
-        mx = F[x, L.REST_NX]
-        my = F[x, L.REST_NY]
-        along = jx * mx + jy * my
-        jx -= along * mx
-        jy -= along * my
-    dvx = jx * F[x, L.INV_MASS]
-    dvy = jy * F[x, L.INV_MASS]
-    dw = 0.0 if keep else (rx * jy - ry * jx) * F[x, L.INV_INERTIA]
-    if dvx == 0.0 and dvy == 0.0 and dw == 0.0:
-        return False
-    F[x, L.VX] += dvx
-    F[x, L.VY] += dvy
-    F[x, L.OMEGA] += dw
-    return True
-
-
 @njit(cache=True)
 def contact_geometry(S, a, b, feature):
     """Contact point and unit normal (from b towards a) of ``a`` and ``b`` at their common
@@ -293,90 +254,6 @@ def contact_geometry(S, a, b, feature):
         owner = a
         edge = feature - n_b
     return px, py, nx, ny, owner, edge
-
-
-@njit(cache=True)
-def _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
-    """Keep a pressed contact that cannot rest from a Zeno run of ever smaller bounces.
-
-    A polygon rocking on a corner under gravity strikes it ever more gently
-    and often, converging on a contact that lasts (the body pivots), which
-    has no closed form; so does a body wedged between two others that each
-    rest on something else. Instead, while the contact is pressed shut
-    (``press_rate`` < 0), with ``v_min = sqrt(2 |g''| h)`` the speed that lifts
-    the corner by ``h = rest_height x`` the smaller bounding radius, it leaves
-    at ``max(e u, v_min)`` when it came in at ``u >= v_min``; elastically
-    (``u``) when ``_KICK v_min <= u < v_min``; and at ``v_min`` when it came in
-    slower still (a corner nearly at rest and pressed down), the only case
-    that gains energy, at most ``m |g''| h``. Slow pressed bounces therefore
-    neither converge nor gain energy, and a pivot takes events at intervals
-    of about ``2 v_min / |g''|``. The bounce is then done again from the velocities before it
-    (``pre``), through ``contact_impulse`` with the restitution this asks for,
-    so friction and the energy guard apply as in any collision. Returns the
-    new normal impulse, or -1.0 if the rule does not apply.
-    """
-    F = S[0]
-    I = S[1]
-    P = S[3]
-    keep_a = I[a, L.SUPPORT] >= 0  # still resting: it was pressed into its support
-    keep_b = I[b, L.SUPPORT] >= 0
-    va_x, va_y, wa, vb_x, vb_y, wb = pre
-    rax = px - F[a, L.X]
-    ray = py - F[a, L.Y]
-    rbx = px - F[b, L.X]
-    rby = py - F[b, L.Y]
-    curvature = press_rate(
-        rbx, rby, nx, ny, F[a, L.X] - F[b, L.X], F[a, L.Y] - F[b, L.Y], va_x - vb_x, va_y - vb_y,
-        F[a, L.AX] - F[b, L.AX], F[a, L.AY] - F[b, L.AY],
-        wa if I[a, L.KIND] != CIRCLE else 0.0, wb if I[b, L.KIND] != CIRCLE else 0.0,
-    )
-    if not curvature < 0.0:
-        return -1.0
-    ux = va_x - wa * ray - (vb_x - wb * rby)
-    uy = va_y + wa * rax - (vb_y + wb * rbx)
-    un = ux * nx + uy * ny
-    ut = -ux * ny + uy * nx
-    approach = max(-un, 0.0)
-    floor = math.sqrt(-2.0 * curvature * P[L.REST_HEIGHT] * min(F[a, L.REACH], F[b, L.REACH]))
-    kick = False
-    if approach >= floor:
-        target = max(restitution * approach, floor)  # never more than it came in with
-    elif approach >= _KICK * floor:
-        target = approach  # elastic: slow pressed bounces neither die out nor gain
-    else:
-        target = floor  # (nearly) at rest on a pressed corner: lift it
-        kick = True
-    now_x = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
-    now_y = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
-    if now_x * nx + now_y * ny >= target:
-        return -1.0
-    # Bounce again from the velocities before the collision.
-    F[a, L.VX] = va_x
-    F[a, L.VY] = va_y
-    F[a, L.OMEGA] = wa
-    F[b, L.VX] = vb_x
-    F[b, L.VY] = vb_y
-    F[b, L.OMEGA] = wb
-    tx = -ny
-    ty = nx
-    ann, ant, att = _response(F, a, keep_a, rax, ray, nx, ny, tx, ty)
-    bnn, bnt, btt = _response(F, b, keep_b, rbx, rby, nx, ny, tx, ty)
-    knn = ann + bnn
-    if not knn > 0.0:
-        return -1.0
-    jn = 0.0
-    jt = 0.0
-    if un < 0.0:
-        jn, jt = contact_impulse(un, ut, knn, ant + bnt, att + btt, 1.0 if kick else target / approach, mu)
-    if kick:
-        leaving = un + knn * jn + (ant + bnt) * jt
-        if leaving < target:
-            jn += (target - leaving) / knn
-    jx = jn * nx + jt * tx
-    jy = jn * ny + jt * ty
-    _apply(F, a, keep_a, jx, jy, rax, ray)
-    _apply(F, b, keep_b, -jx, -jy, rbx, rby)
-    return jn
 
 
 @njit(cache=True)
@@ -424,8 +301,10 @@ def collide(S, a, b, feature, t):
         if I[b, L.SUPPORT] >= 0 and not keep_b:
             detach(S, b)
             S[13][L.S_RELEASES] += 1
-        ann, ant, att = _response(F, a, keep_a, rax, ray, nx, ny, tx, ty)
-        bnn, bnt, btt = _response(F, b, keep_b, rbx, rby, nx, ny, tx, ty)
+        turns_a = not keep_a or I[a, L.KIND] == CIRCLE
+        turns_b = not keep_b or I[b, L.KIND] == CIRCLE
+        ann, ant, att = contact_response(F, a, keep_a, turns_a, rax, ray, nx, ny, tx, ty)
+        bnn, bnt, btt = contact_response(F, b, keep_b, turns_b, rbx, rby, nx, ny, tx, ty)
         knn = ann + bnn
         if knn > 0.0:
             impulse, tangential = contact_impulse(
@@ -433,10 +312,10 @@ def collide(S, a, b, feature, t):
             )
             jx = impulse * nx + tangential * tx
             jy = impulse * ny + tangential * ty
-            if _apply(F, a, keep_a, jx, jy, rax, ray):
+            if apply_impulse(F, a, keep_a, turns_a, jx, jy, rax, ray):
                 group[count] = a
                 count += 1
-            if _apply(F, b, keep_b, -jx, -jy, rbx, rby):
+            if apply_impulse(F, b, keep_b, turns_b, -jx, -jy, rbx, rby):
                 group[count] = b
                 count += 1
     # The impulse changed these bodies: keep or end their own rest, and release what
@@ -450,16 +329,13 @@ def collide(S, a, b, feature, t):
         count = release_riders(S, x, group, count, t)
     # Then the slower of a bounce may come to rest on the other (after the releases, so
     # that a rider settling on a support the impulse just nudged is not let go again).
-    if try_rest(S, a, b, nx, ny, owner, edge, px, py, t):
-        group[count] = a
-        count += 1
-        S[13][L.S_RESTS] += 1
-    elif try_rest(S, b, a, -nx, -ny, owner, edge, px, py, t):
-        group[count] = b
-        count += 1
+    rested, count = try_rest(S, a, b, nx, ny, owner, edge, px, py, t, group, count)
+    if not rested:
+        rested, count = try_rest(S, b, a, -nx, -ny, owner, edge, px, py, t, group, count)
+    if rested:
         S[13][L.S_RESTS] += 1
     else:
-        redone = _pivot(S, a, b, px, py, nx, ny, restitution, mu, pre)
+        redone = pivot(S, a, b, px, py, nx, ny, restitution, mu, pre)
         if redone >= 0.0:
             impulse = max(redone, 1e-300)
             for x in (a, b):

@@ -93,6 +93,8 @@ STAT_NAMES = (
     "rests",
     "releases",
     "contact_changes",
+    "pivot_lifts",
+    "unpaid_lifts",
 )
 (
     S_EVENTS,
@@ -111,8 +113,10 @@ STAT_NAMES = (
     S_RESTS,
     S_RELEASES,
     S_CONTACT_CHANGES,
-) = range(16)
-NSTATS = 16
+    S_PIVOT_LIFTS,
+    S_UNPAID_LIFTS,
+) = range(18)
+NSTATS = 18
 
 # ---- event kinds (high bits of the heap key; equal times pop in this order) --
 COLLISION, CONTACT_EVENT, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3, 4

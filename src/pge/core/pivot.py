@@ -1,0 +1,322 @@
+"""The pivot rule: a pressed contact that cannot rest neither converges (Zeno) nor gains energy.
+
+See ``pivot``. The lift it gives a contact nearly at rest is paid for out of the
+pair's own kinetic energy: first out of the contact's slip (``paid_lift``), else out of
+the bodies' motion that a contact impulse cannot reach, with momentum and angular
+momentum kept (``lift_from_motion``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from pge.core import layout as L
+from pge.core.impulse import contact_impulse
+from pge.core.response import apply_impulse, contact_response
+from pge.toi.rotating import press_rate
+
+CIRCLE = 0
+#: a pressed corner slower than this fraction of the pivot speed is lifted to it
+KICK = 0.1
+#: a lift paid for by the bodies may be this much slower than the pivot speed, no slower
+SLOWEST = 1e-3
+
+
+@njit(cache=True)
+def paid_lift(un, ut, knn, knt, ktt, jn, jt, target):
+    """The impulse ``(jn, jt)`` topped up so that the contact leaves at ``target`` along the
+    normal, with the lift paid for out of the contact's slip: returns ``(jn, jt, paid)``.
+
+    In contact space (relative contact-point velocity ``w``, inverse mass
+    ``K``) the pair's kinetic energy that an impulse there can change is
+    ``w^T K^-1 w / 2``. With the normal part fixed at ``target`` it is least,
+    ``target^2 / (2 k_nn)``, at the slip ``w_t* = k_nt target / k_nn``. The
+    slip after a plain normal top-up is moved towards ``w_t*`` just far enough
+    that the energy is no more than before the collision. ``paid`` is False
+    when even ``w_t*`` costs more (the contact barely moves at all): then the
+    lift gains at most ``target^2 / (2 k_nn)``, about ``m |g''| h``.
+    """
+    leaving = un + knn * jn + knt * jt
+    if leaving < target:
+        jn += (target - leaving) / knn
+    slip = ut + knt * jn + ktt * jt
+    det = knn * ktt - knt * knt
+    if not det > 1e-12 * knn * ktt:
+        # No independent slip: the energy is target^2 / (2 k_nn) whatever the slip.
+        return jn, jt, target * target <= un * un
+    before = (ktt * un * un - 2.0 * knt * un * ut + knn * ut * ut) / det  # 2 E(u)
+    after = (ktt * target * target - 2.0 * knt * target * slip + knn * slip * slip) / det
+    if after <= before:
+        return jn, jt, True
+    cheapest = knt * target / knn
+    reserve = det * (knn * before - target * target)
+    if reserve < 0.0:
+        slip = cheapest
+        paid = False
+    else:
+        # The slip on slip's side of the cheapest one at which the energy is ``before``
+        # (shrunk a little, so that rounding cannot leave it above).
+        half_width = math.sqrt(reserve) / knn * (1.0 - 1e-9)
+        slip = cheapest + half_width if slip > cheapest else cheapest - half_width
+        paid = True
+    # The impulse that makes the contact-space velocity (target, slip): j = K^-1 (w - u).
+    dn = target - un
+    dt = slip - ut
+    jn = (ktt * dn - knt * dt) / det
+    jt = (knn * dt - knt * dn) / det
+    return jn, jt, paid
+
+
+@njit(cache=True)
+def pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
+    """Keep a pressed contact that cannot rest from a Zeno run of ever smaller bounces.
+
+    A polygon rocking on a corner under gravity strikes it ever more gently
+    and often, converging on a contact that lasts (the body pivots), which
+    has no closed form; so does a body wedged between two others that each
+    rest on something else. Instead, while the contact is pressed shut
+    (``press_rate`` < 0), with ``v_min = sqrt(2 |g''| h)`` the speed that lifts
+    the corner by ``h = rest_height x`` the smaller bounding radius, it leaves
+    at ``max(e u, v_min)`` when it came in at ``u >= v_min``; elastically
+    (``u``) when ``KICK v_min <= u < v_min``; and at ``v_min`` when it came in
+    slower still (a corner nearly at rest and pressed down), the only case
+    that gains energy, at most ``m |g''| h``. Slow pressed bounces therefore
+    neither converge nor gain energy, and a pivot takes events at intervals
+    of about ``2 v_min / |g''|``. The bounce is then done again from the velocities before it
+    (``pre``), through ``contact_impulse`` with the restitution this asks for,
+    so friction and the energy guard apply as in any collision. Returns the
+    new normal impulse, or -1.0 if the rule does not apply.
+    """
+    F = S[0]
+    I = S[1]
+    P = S[3]
+    keep_a = I[a, L.SUPPORT] >= 0  # still resting: it was pressed into its support
+    keep_b = I[b, L.SUPPORT] >= 0
+    turns_a = not keep_a or I[a, L.KIND] == CIRCLE
+    turns_b = not keep_b or I[b, L.KIND] == CIRCLE
+    va_x, va_y, wa, vb_x, vb_y, wb = pre
+    rax = px - F[a, L.X]
+    ray = py - F[a, L.Y]
+    rbx = px - F[b, L.X]
+    rby = py - F[b, L.Y]
+    curvature = press_rate(
+        rbx, rby, nx, ny, F[a, L.X] - F[b, L.X], F[a, L.Y] - F[b, L.Y], va_x - vb_x, va_y - vb_y,
+        F[a, L.AX] - F[b, L.AX], F[a, L.AY] - F[b, L.AY],
+        wa if I[a, L.KIND] != CIRCLE else 0.0, wb if I[b, L.KIND] != CIRCLE else 0.0,
+    )
+    if not curvature < 0.0:
+        return -1.0
+    ux = va_x - wa * ray - (vb_x - wb * rby)
+    uy = va_y + wa * rax - (vb_y + wb * rbx)
+    un = ux * nx + uy * ny
+    ut = -ux * ny + uy * nx
+    approach = max(-un, 0.0)
+    floor = math.sqrt(-2.0 * curvature * P[L.REST_HEIGHT] * min(F[a, L.REACH], F[b, L.REACH]))
+    kick = False
+    if approach >= floor:
+        target = max(restitution * approach, floor)  # never more than it came in with
+    elif approach >= KICK * floor:
+        target = approach  # elastic: slow pressed bounces neither die out nor gain
+    else:
+        target = floor  # (nearly) at rest on a pressed corner: lift it
+        kick = True
+    now_x = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
+    now_y = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
+    if now_x * nx + now_y * ny >= target:
+        return -1.0
+    # Bounce again from the velocities before the collision.
+    F[a, L.VX] = va_x
+    F[a, L.VY] = va_y
+    F[a, L.OMEGA] = wa
+    F[b, L.VX] = vb_x
+    F[b, L.VY] = vb_y
+    F[b, L.OMEGA] = wb
+    tx = -ny
+    ty = nx
+    ann, ant, att = contact_response(F, a, keep_a, turns_a, rax, ray, nx, ny, tx, ty)
+    bnn, bnt, btt = contact_response(F, b, keep_b, turns_b, rbx, rby, nx, ny, tx, ty)
+    knn = ann + bnn
+    if not knn > 0.0:
+        return -1.0
+    knt = ant + bnt
+    ktt = att + btt
+    jn = 0.0
+    jt = 0.0
+    if un < 0.0:
+        jn, jt = contact_impulse(un, ut, knn, knt, ktt, 1.0 if kick else target / approach, mu)
+    paid = True
+    if kick:
+        jn, jt, paid = paid_lift(un, ut, knn, knt, ktt, jn, jt, target)
+        S[13][L.S_PIVOT_LIFTS] += 1
+    jx = jn * nx + jt * tx
+    jy = jn * ny + jt * ty
+    apply_impulse(F, a, keep_a, turns_a, jx, jy, rax, ray)
+    apply_impulse(F, b, keep_b, turns_b, -jx, -jy, rbx, rby)
+    if not paid:
+        # What the bodies that took part may spend: their energy before the bounce, less
+        # what a kept-resting one has now (fixed bodies keep theirs).
+        budget = 0.0
+        for x in (a, b):
+            if F[x, L.INV_MASS] > 0.0:
+                if x == a:
+                    budget += _kinetic(F, x, va_x, va_y, wa)
+                else:
+                    budget += _kinetic(F, x, vb_x, vb_y, wb)
+                if I[x, L.SUPPORT] >= 0:
+                    budget -= _kinetic(F, x, F[x, L.VX], F[x, L.VY], F[x, L.OMEGA])
+        free_a = a if not keep_a else -1
+        free_b = b if not keep_b else -1
+        if not lift_from_motion(F, free_a, free_b, px, py, nx, ny, budget, SLOWEST * target):
+            S[13][L.S_UNPAID_LIFTS] += 1
+    return jn
+
+
+@njit(cache=True, inline="always")
+def _kinetic(F, x, vx, vy, w):
+    """Kinetic energy of body ``x`` (not fixed) at velocity ``(vx, vy)`` and spin ``w``."""
+    spin = 0.5 * w * w / F[x, L.INV_INERTIA] if F[x, L.INV_INERTIA] > 0.0 else 0.0
+    return 0.5 * (vx * vx + vy * vy) / F[x, L.INV_MASS] + spin
+
+
+@njit(cache=True)
+def lift_from_motion(F, a, b, px, py, nx, ny, budget, slowest):
+    """Bring the kinetic energy of the free bodies among ``a`` and ``b`` (``-1``: not free)
+    down to ``budget`` without changing what the lift set: their relative normal velocity
+    at the contact ``(px, py)``, and, when both are free, their total momentum and angular
+    momentum. If that costs more than the budget, the contact leaves slower instead, as
+    fast as the budget allows, but not slower than ``slowest``; False (nothing changed)
+    if even that is impossible.
+
+    With ``v`` the free bodies' velocities and spins, ``M`` their masses and
+    inertias and ``C v = d`` the kept quantities, the least energy is at
+    ``v* = M^-1 C^T lam`` with ``(C M^-1 C^T) lam = d`` and equals ``lam . d / 2``.
+    Along the segment from ``v*`` to the present ``v`` the energy is
+    ``E* + s^2 (E - E*)`` (``v*`` is the M-orthogonal projection), so the state
+    at ``s = sqrt((budget - E*) / (E - E*))`` spends exactly the budget. This
+    is the work a lasting pivot contact does between the bodies' motions,
+    which single impulses at the contact point cannot do.
+    """
+    ids = np.empty(2, dtype=np.int64)
+    signs = np.empty(2)
+    n = 0
+    if a >= 0 and F[a, L.INV_MASS] > 0.0 and F[a, L.INV_INERTIA] > 0.0:
+        ids[n] = a
+        signs[n] = 1.0
+        n += 1
+    if b >= 0 and F[b, L.INV_MASS] > 0.0 and F[b, L.INV_INERTIA] > 0.0:
+        ids[n] = b
+        signs[n] = -1.0
+        n += 1
+    if n == 0:
+        return False
+    dof = 3 * n
+    rows = 4 if n == 2 else 1
+    v = np.empty(dof)
+    w = np.empty(dof)  # inverse masses
+    C = np.zeros((rows, dof))
+    for k in range(n):
+        x = ids[k]
+        v[3 * k] = F[x, L.VX]
+        v[3 * k + 1] = F[x, L.VY]
+        v[3 * k + 2] = F[x, L.OMEGA]
+        w[3 * k] = F[x, L.INV_MASS]
+        w[3 * k + 1] = F[x, L.INV_MASS]
+        w[3 * k + 2] = F[x, L.INV_INERTIA]
+        rx = px - F[x, L.X]
+        ry = py - F[x, L.Y]
+        # relative normal velocity at the contact: n . (v + w x r), a's minus b's
+        C[0, 3 * k] = signs[k] * nx
+        C[0, 3 * k + 1] = signs[k] * ny
+        C[0, 3 * k + 2] = signs[k] * (rx * ny - ry * nx)
+        if n == 2:
+            m = 1.0 / F[x, L.INV_MASS]
+            C[1, 3 * k] = m
+            C[2, 3 * k + 1] = m
+            # angular momentum about the contact point (centroid at -r from it)
+            C[3, 3 * k] = m * ry
+            C[3, 3 * k + 1] = -m * rx
+            C[3, 3 * k + 2] = 1.0 / F[x, L.INV_INERTIA]
+    energy = 0.0
+    for q in range(dof):
+        energy += 0.5 * v[q] * v[q] / w[q]
+    if energy <= budget:
+        return True
+    d = np.zeros(rows)
+    A = np.zeros((rows, rows))
+    for i in range(rows):
+        for q in range(dof):
+            d[i] += C[i, q] * v[q]
+            for j in range(rows):
+                A[i, j] += C[i, q] * w[q] * C[j, q]
+    lam = _solve_spd(A, d)
+    least = 0.0
+    for i in range(rows):
+        least += 0.5 * lam[i] * d[i]
+    if least < budget:
+        s = math.sqrt((budget - least) / (energy - least)) * (1.0 - 1e-9)
+    else:
+        # Not even the cheapest state leaves at this speed: leave as fast as the budget
+        # allows. The least energy at leaving speed u is the quadratic
+        # (d0^T A^-1 d0 + 2 u (A^-1 d0)_0 + u^2 (A^-1)_00) / 2, d0 = d without its speed.
+        spent = budget * (1.0 - 1e-9)
+        d[0] = 0.0
+        base = _solve_spd(A, d)
+        unit = np.zeros(rows)
+        unit[0] = 1.0
+        column = _solve_spd(A, unit)
+        c0 = 0.0
+        for i in range(rows):
+            c0 += base[i] * d[i]
+        qa = column[0]
+        qb = base[0]
+        disc = qb * qb - qa * (c0 - 2.0 * spent)
+        if not (qa > 0.0 and disc >= 0.0):
+            return False
+        speed = (-qb + math.sqrt(disc)) / qa
+        if not speed >= slowest:
+            return False
+        d[0] = speed
+        lam = _solve_spd(A, d)
+        s = 0.0
+    best = np.zeros(dof)
+    for q in range(dof):
+        for i in range(rows):
+            best[q] += w[q] * C[i, q] * lam[i]
+    for k in range(n):
+        x = ids[k]
+        F[x, L.VX] = best[3 * k] + s * (v[3 * k] - best[3 * k])
+        F[x, L.VY] = best[3 * k + 1] + s * (v[3 * k + 1] - best[3 * k + 1])
+        F[x, L.OMEGA] = best[3 * k + 2] + s * (v[3 * k + 2] - best[3 * k + 2])
+    return True
+
+
+@njit(cache=True)
+def _solve_spd(A, d):
+    """Solve ``A x = d`` for a small symmetric positive definite ``A`` (Cholesky)."""
+    n = A.shape[0]
+    Lo = np.zeros((n, n))
+    for i in range(n):
+        for j in range(i + 1):
+            total = A[i, j]
+            for k in range(j):
+                total -= Lo[i, k] * Lo[j, k]
+            if i == j:
+                Lo[i, i] = math.sqrt(max(total, 1e-300))
+            else:
+                Lo[i, j] = total / Lo[j, j]
+    y = np.empty(n)
+    for i in range(n):
+        total = d[i]
+        for k in range(i):
+            total -= Lo[i, k] * y[k]
+        y[i] = total / Lo[i, i]
+    x = np.empty(n)
+    for i in range(n - 1, -1, -1):
+        total = y[i]
+        for k in range(i + 1, n):
+            total -= Lo[k, i] * x[k]
+        x[i] = total / Lo[i, i]
+    return x
