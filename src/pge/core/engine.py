@@ -192,6 +192,12 @@ def _keeps_resting(F, I, OL, x, dx, dy, px, py, approach, rest_height):
         return False
     mx = F[x, L.REST_NX]
     my = F[x, L.REST_NY]
+    vx = F[x, L.VX]
+    vy = F[x, L.VY]
+    if abs(vx * mx + vy * my) > 1e-12 * math.hypot(vx, vy):
+        # Its support moves along the rest normal (a curved support sliding by): taking
+        # the impulse's normal part, it would do work on the pair.
+        return False
     along = dx * mx + dy * my
     if I[x, L.KIND] == CIRCLE:
         if along <= 0.0:
