@@ -657,6 +657,23 @@ def test_random_rotating_scenes_never_overlap_and_stay_in_the_box(seed, count, e
     assert result["worst"] <= OVERLAP
 
 
+@pytest.mark.parametrize(
+    "seed, count, elastic, gravity, friction",
+    [
+        (1, 10, False, True, False),  # settling flat turned a polygon into a wedged circle (8.2e-6)
+        (6, 10, False, True, False),  # the same (3.1e-5)
+        (8, 10, False, False, False),  # three circles at one instant: an event storm
+        (4294967294, 12, False, False, True),  # a circle squeezed between two: an event storm
+    ],
+)
+def test_surveyed_scenes_that_overlapped_or_stormed(seed, count, elastic, gravity, friction):
+    """Scenes of ``tools/repro/survey.py overlap`` that failed before the shared 'still' rule and
+    the neighbour check of settling flat, over the first 1500 events."""
+    result = guarded(run_overlap_scene, seed, count, elastic, gravity, friction, timeout=60.0)
+    assert result["first_bad"] is None, f"overlap {result['first_bad']}; {result['events']} events"
+    assert result["events"] >= 1000 or result["end"] >= 10.0
+
+
 def mechanical_energy(world, bodies, masses):
     """Kinetic (with rotation) plus gravitational potential energy of ``bodies`` (zero at y = 0)."""
     return world.kinetic_energy() - world.gravity[1] * float(masses @ world.positions(bodies)[:, 1])

@@ -29,7 +29,9 @@ import math
 from numba import njit
 
 from pge.core import layout as L
+from pge.core.grid import gather
 from pge.core.motion import advance, orient, state_at
+from pge.core.overlap import overlap_depth
 from pge.core.queue import push
 from pge.core.response import apply_impulse, contact_response
 from pge.numerics.roots import first_descent_quadratic
@@ -40,6 +42,8 @@ _BALANCE_TOLERANCE = 1e-12
 #: radii before it is released and the contact is looked at afresh.
 CURVED_STEP = 0.02
 CURVED_STEPPING = -2  # EDGE_OWNER value of a curved contact that is being stepped over
+#: settling flat may not push a polygon into a neighbour by more than this many bounding radii
+_TURN_OVERLAP = 1e-12
 
 
 @njit(cache=True, inline="always")
@@ -123,7 +127,8 @@ def _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
     within ``height`` of the support's edge (its far end is lifted by no
     more) and its remaining normal and turning energy could lift it no higher
     than ``height``. It is then turned about the contact corner until that
-    edge lies flat, and stops turning. Returns True if it settled.
+    edge lies flat, and stops turning, unless the turn would push it into a
+    neighbour. Returns True if it settled.
     """
     F = S[0]
     I = S[1]
@@ -175,12 +180,45 @@ def _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
     # than the spin it stops could pay for (else the body tips the other way).
     if -an * ((new_x - cx) * mx + (new_y - cy) * my) > 0.5 * omega * omega * inertia:
         return False
+    old_x = F[r, L.X]
+    old_y = F[r, L.Y]
+    old_angle = F[r, L.ANGLE]
     F[r, L.X] = new_x
     F[r, L.Y] = new_y
-    F[r, L.ANGLE] += delta
-    F[r, L.OMEGA] = 0.0
+    F[r, L.ANGLE] = old_angle + delta
     orient(F, I, OL, S[18], r, t)
+    if _pushes_into_neighbour(S, r, s):
+        F[r, L.X] = old_x
+        F[r, L.Y] = old_y
+        F[r, L.ANGLE] = old_angle
+        orient(F, I, OL, S[18], r, t)
+        return False
+    F[r, L.OMEGA] = 0.0
     return True
+
+
+@njit(cache=True)
+def _pushes_into_neighbour(S, r, s):
+    """Whether ``r``, just turned by hand, overlaps a body other than its support ``s``.
+
+    The turn moves ``r``'s corners by up to its bounding radius, so the search
+    box is widened by that much for the look-up (and restored).
+    """
+    F = S[0]
+    reach = F[r, L.REACH]
+    box = (F[r, L.BOX_X0], F[r, L.BOX_Y0], F[r, L.BOX_X1], F[r, L.BOX_Y1])
+    F[r, L.BOX_X0] -= reach
+    F[r, L.BOX_Y0] -= reach
+    F[r, L.BOX_X1] += reach
+    F[r, L.BOX_Y1] += reach
+    n = gather(S, r)
+    F[r, L.BOX_X0], F[r, L.BOX_Y0], F[r, L.BOX_X1], F[r, L.BOX_Y1] = box
+    scratch = S[15]
+    for k in range(n):
+        j = scratch[k]
+        if j != s and overlap_depth(S, r, j) > _TURN_OVERLAP * (reach + F[j, L.REACH]):
+            return True
+    return False
 
 
 @njit(cache=True)

@@ -29,16 +29,16 @@ from pge.core.contact import (
     settle_acceleration,
     try_rest,
 )
-from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
-from pge.core.motion import advance, orient, state_at
+from pge.core.motion import advance, orient
+from pge.core.overlap import find_overlap, overlap_depth  # noqa: F401 (the World's validation)
 from pge.core.pivot import pivot
 from pge.core.predict import new_mark, place, predict
 from pge.core.response import apply_impulse, contact_response
 from pge.core.queue import pop_earliest
 from pge.toi.circle_circle import circle_circle_contact
-from pge.toi.circle_polygon import circle_polygon_contact, closest_feature
-from pge.toi.polygon_polygon import minkowski_faces, polygon_polygon_contact
+from pge.toi.circle_polygon import circle_polygon_contact
+from pge.toi.polygon_polygon import polygon_polygon_contact
 from pge.toi.rotating import rotating_polygon_polygon_contact
 
 _INF = math.inf
@@ -490,53 +490,3 @@ def run(S, until, notify_all):
             out[L.OUT_ID] = a
             out[L.OUT_EPOCH] = b
             return L.FIRED_FRAME
-
-
-# --------------------------------------------------------------- validation
-
-
-@njit(cache=True)
-def overlap_depth(S, i, j):
-    """Overlap depth of bodies ``i`` and ``j`` at ``P[TIME]`` (negative: apart; for two
-    polygons a lower bound on the distance)."""
-    F = S[0]
-    I = S[1]
-    OL = S[2]
-    P = S[3]
-    orient(F, I, OL, S[18], i, P[L.TIME])
-    orient(F, I, OL, S[18], j, P[L.TIME])
-    xi, yi, _, _ = state_at(F, i, P[L.TIME])
-    xj, yj, _, _ = state_at(F, j, P[L.TIME])
-    if I[i, L.KIND] == CIRCLE and I[j, L.KIND] == CIRCLE:
-        return F[i, L.RADIUS] + F[j, L.RADIUS] - math.hypot(xi - xj, yi - yj)
-    if I[i, L.KIND] == CIRCLE:
-        return -closest_feature(xi - xj, yi - yj, F[i, L.RADIUS], OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N])[3]
-    if I[j, L.KIND] == CIRCLE:
-        return -closest_feature(xj - xi, yj - yi, F[j, L.RADIUS], OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N])[3]
-    faces = minkowski_faces(OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], I[j, L.OUTLINE_START], I[j, L.OUTLINE_N])
-    best = -_INF
-    for f in range(faces.shape[0]):
-        s = faces[f, 0] * (xi - xj) + faces[f, 1] * (yi - yj) + faces[f, 2]
-        if s > best:
-            best = s
-    return -best
-
-
-@njit(cache=True)
-def find_overlap(S, ids, tolerance):
-    """First pair ``(i, j, depth)`` among ``ids`` and their neighbours overlapping by more
-    than ``tolerance`` times their bounding radii; ``(-1, -1, 0.0)`` when there is none."""
-    F = S[0]
-    I = S[1]
-    scratch = S[15]
-    for k in range(ids.shape[0]):
-        i = ids[k]
-        n = gather(S, i)
-        for m in range(n):
-            j = scratch[m]
-            if I[i, L.FIXED] != 0 and I[j, L.FIXED] != 0:
-                continue
-            depth = overlap_depth(S, i, j)
-            if depth > tolerance * (F[i, L.REACH] + F[j, L.REACH]):
-                return i, j, depth
-    return -1, -1, 0.0

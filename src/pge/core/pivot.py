@@ -15,8 +15,9 @@ from numba import njit
 
 from pge.core import layout as L
 from pge.core.impulse import contact_impulse
+from pge.core.predict import still_speed
 from pge.core.response import apply_impulse, contact_response
-from pge.toi.rotating import press_rate
+from pge.toi.rotating import press_noise, press_rate
 
 CIRCLE = 0
 #: a pressed corner slower than this fraction of the pivot speed is lifted to it
@@ -79,7 +80,9 @@ def pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     has no closed form; so does a body wedged between two others that each
     rest on something else. Instead, while the contact is pressed shut
     (``press_rate`` < 0), with ``v_min = sqrt(2 |g''| h)`` the speed that lifts
-    the corner by ``h = rest_height x`` the smaller bounding radius, it leaves
+    the corner by ``h = rest_height x`` the smaller bounding radius (but no
+    less than twice the pair's rounding speed, ``still_speed``, which the
+    kernels would take for no motion at all), it leaves
     at ``max(e u, v_min)`` when it came in at ``u >= v_min``; elastically
     (``u``) when ``KICK v_min <= u < v_min``; and at ``v_min`` when it came in
     slower still (a corner nearly at rest and pressed down), the only case
@@ -102,19 +105,29 @@ def pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     ray = py - F[a, L.Y]
     rbx = px - F[b, L.X]
     rby = py - F[b, L.Y]
+    spin_a = wa if I[a, L.KIND] != CIRCLE else 0.0
+    spin_b = wb if I[b, L.KIND] != CIRCLE else 0.0
+    dax = F[a, L.AX] - F[b, L.AX]
+    day = F[a, L.AY] - F[b, L.AY]
     curvature = press_rate(
         rbx, rby, nx, ny, F[a, L.X] - F[b, L.X], F[a, L.Y] - F[b, L.Y], va_x - vb_x, va_y - vb_y,
-        F[a, L.AX] - F[b, L.AX], F[a, L.AY] - F[b, L.AY],
-        wa if I[a, L.KIND] != CIRCLE else 0.0, wb if I[b, L.KIND] != CIRCLE else 0.0,
+        dax, day, spin_a, spin_b,
     )
-    if not curvature < 0.0:
+    # Within rounding of "pressed" counts as pressed: the kernel may have judged it so.
+    still = still_speed(F, a, b, F[a, L.X], F[a, L.Y], va_x, va_y, F[b, L.X], F[b, L.Y], vb_x, vb_y)
+    noise = press_noise(
+        math.hypot(dax, day), math.hypot(va_x - vb_x, va_y - vb_y), abs(spin_a), abs(spin_b),
+        F[a, L.REACH] if I[a, L.KIND] != CIRCLE else 0.0, F[b, L.REACH], still,
+    )
+    if not curvature < noise:
         return -1.0
     ux = va_x - wa * ray - (vb_x - wb * rby)
     uy = va_y + wa * rax - (vb_y + wb * rbx)
     un = ux * nx + uy * ny
     ut = -ux * ny + uy * nx
     approach = max(-un, 0.0)
-    floor = math.sqrt(-2.0 * curvature * P[L.REST_HEIGHT] * min(F[a, L.REACH], F[b, L.REACH]))
+    floor = math.sqrt(max(-2.0 * curvature, 0.0) * P[L.REST_HEIGHT] * min(F[a, L.REACH], F[b, L.REACH]))
+    floor = max(floor, 2.0 * still)  # the kernels would take a slower lift for rounding
     kick = False
     if approach >= floor:
         target = max(restitution * approach, floor)  # never more than it came in with

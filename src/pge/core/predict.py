@@ -77,6 +77,27 @@ def place(S, i):
         push(S, horizon, (L.HORIZON_EVENT << L.KIND_SHIFT) | i, i, -1, I[i, L.COUNT], 0, 0)
 
 
+#: approach speeds below this many units in the last place of the velocities are rounding
+_STILL_ULPS = 64.0 * 2.0**-52
+
+
+@njit(cache=True, inline="always")
+def still_speed(F, i, j, ix, iy, ivx, ivy, jx, jy, jvx, jvy):
+    """The approach speed below which touching ``i`` and ``j`` count as not approaching.
+
+    ``collide`` computes the normal speed at the contact point from the bodies'
+    velocities, spins and lever arms, the kernels from relative motion; the two
+    differ by rounding of about an ulp of each term (``|v|``, and ``|omega|``
+    times the lever arm, whose rounding is an ulp of the position). A kernel
+    that called a slower approach "approaching" could disagree with ``collide``
+    (a graze) or ask for an impulse too small to change any velocity, and the
+    pair would be reported again at the same instant for ever.
+    """
+    spin_i = abs(F[i, L.OMEGA]) * (F[i, L.REACH] + abs(ix) + abs(iy))
+    spin_j = abs(F[j, L.OMEGA]) * (F[j, L.REACH] + abs(jx) + abs(jy))
+    return _STILL_ULPS * (math.hypot(ivx, ivy) + math.hypot(jvx, jvy) + spin_i + spin_j)
+
+
 @njit(cache=True)
 def predict(S, i, mark):
     """Predict body ``i`` against every candidate (skipping bodies carrying ``mark`` and
@@ -129,24 +150,27 @@ def predict(S, i, mark):
             stats[L.S_BOUND_REJECTS] += 1
             continue
         stats[L.S_PREDICTIONS] += 1
+        still = still_speed(F, i, j, ix, iy, ivx, ivy, jx, jy, jvx, jvy)
         jkind = I[j, L.KIND]
         first = i
         second = j
         if spinning(F, I, i) or spinning(F, I, j):
-            t, feature = _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window)
+            t, feature = _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window, still)
             if ikind != CIRCLE and jkind == CIRCLE:
                 first = j
                 second = i
         elif ikind == CIRCLE:
             if jkind == CIRCLE:
-                t, feature = circle_circle(dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], F[j, L.RADIUS], window)
+                t, feature = circle_circle(dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], F[j, L.RADIUS], window, still)
             else:
                 t, feature = circle_polygon(
-                    dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], window
+                    dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], window,
+                    still,
                 )
         elif jkind == CIRCLE:
             t, feature = circle_polygon(
-                -dx, -dy, -dvx, -dvy, -dax, -day, F[j, L.RADIUS], OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], window
+                -dx, -dy, -dvx, -dvy, -dax, -day, F[j, L.RADIUS], OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], window,
+                still,
             )
             first = j
             second = i
@@ -164,6 +188,7 @@ def predict(S, i, mark):
                 I[j, L.OUTLINE_START],
                 I[j, L.OUTLINE_N],
                 window,
+                still,
             )
         if feature == CHECKPOINT:
             # The rotating search ran out of budget: no contact before now + t; look
@@ -180,7 +205,7 @@ def predict(S, i, mark):
 
 
 @njit(cache=True)
-def _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window):
+def _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window, still):
     """First contact of ``i`` and ``j`` when a polygon among them spins: the rotating
     kernels on the unturned outlines ``OB`` and the angles now. ``d, dv, da`` are
     ``i`` relative to ``j``; a (polygon, circle) pair is turned round."""
@@ -192,18 +217,18 @@ def _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window):
             return _INF, 0
         return rotating_circle_polygon(
             dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], OB, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N],
-            kernel_angle(F, j, now), F[j, L.OMEGA], window,
+            kernel_angle(F, j, now), F[j, L.OMEGA], window, still,
         )
     if I[j, L.KIND] == CIRCLE:
         return rotating_circle_polygon(
             -dx, -dy, -dvx, -dvy, -dax, -day, F[j, L.RADIUS], OB, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N],
-            kernel_angle(F, i, now), F[i, L.OMEGA], window,
+            kernel_angle(F, i, now), F[i, L.OMEGA], window, still,
         )
     return rotating_polygon_polygon(
         dx, dy, dvx, dvy, dax, day, OB,
         I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], kernel_angle(F, i, now), F[i, L.OMEGA],
         I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], kernel_angle(F, j, now), F[j, L.OMEGA],
-        window,
+        window, still,
     )
 
 

@@ -8,7 +8,11 @@ acceleration, plus the two shapes and a ``horizon``. It returns
 means "overlapping and approaching": collide now; ``inf`` means no contact
 within ``[0, horizon]``) and ``feature`` an integer naming the touching
 features, which the matching ``*_contact`` function turns into a contact
-point and normal.
+point and normal. An optional last argument ``still`` is the approach speed
+below which touching shapes count as not approaching (the rounding noise of
+the contact's velocities): the engine's collision response must agree with
+the kernel on "approaching", or a contact could be reported again and again
+at one instant.
 
 Polygons are passed as rows of an *outline array* (see ``outline_rows``).
 The engine dispatches on the two shape kinds through ``PAIR_KERNELS``; a

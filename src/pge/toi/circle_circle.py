@@ -10,17 +10,21 @@ from pge.numerics.roots import first_descent, first_descent_quadratic
 
 
 @njit(cache=True)
-def circle_circle(dx, dy, dvx, dvy, dax, day, radius_a, radius_b, horizon):
+def circle_circle(dx, dy, dvx, dvy, dax, day, radius_a, radius_b, horizon, still=0.0):
     """First contact of two circles within ``[0, horizon]``: ``(t, 0)``, t = inf for none.
 
     ``(dx, dy)``, ``(dvx, dvy)`` and ``(dax, day)`` are the offset, velocity and
     acceleration of circle a relative to circle b. The gap function is
     ``|d(t)|^2 - (ra + rb)^2``: a quadratic when the relative acceleration is
-    zero (equal gravity on both bodies), a quartic otherwise.
+    zero (equal gravity on both bodies), a quartic otherwise. Touching circles
+    closing slower than ``still`` (the rounding noise of the approach speed,
+    ``pge.core.predict.still_speed``) are not approaching.
     """
     reach = radius_a + radius_b
     c0 = dx * dx + dy * dy - reach * reach
     c1 = 2.0 * (dx * dvx + dy * dvy)
+    if c0 <= 0.0 and c1 < 0.0 and c1 >= -2.0 * reach * still:
+        c1 = 0.0
     c2 = dvx * dvx + dvy * dvy
     if dax == 0.0 and day == 0.0:
         return first_descent_quadratic(c0, c1, c2, horizon, True), 0

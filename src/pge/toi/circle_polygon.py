@@ -88,12 +88,13 @@ def _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny):
 
 
 @njit(cache=True)
-def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon):
+def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, still=0.0):
     """First contact of a circle and a convex polygon within ``[0, horizon]``.
 
     ``(px, py)``, ``(vx, vy)``, ``(ax, ay)``: the circle's centre, velocity and
     acceleration relative to the polygon's centroid. Returns
-    ``(t, feature)``; t = inf for no contact.
+    ``(t, feature)``; t = inf for no contact. Touching shapes closing slower
+    than ``still`` (``pge.core.predict.still_speed``) are not approaching.
     """
     # Overlap at t = 0 is judged for the shape as a whole, by its nearest feature.
     max_s = -_INF
@@ -105,6 +106,8 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon):
     if max_s <= radius:
         feature, nx, ny, gap = closest_feature(px, py, radius, outline, start, n)
         closing = nx * vx + ny * vy
+        if -still <= closing < 0.0:
+            closing = 0.0
         if gap <= 0.0 and (closing < 0.0 or (closing == 0.0 and _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny))):
             return 0.0, feature
     best_t = horizon

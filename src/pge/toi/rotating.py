@@ -304,6 +304,21 @@ def press_rate(px, py, nx, ny, ox, oy, vx, vy, ax, ay, omega_a, omega_b):
     return 2.0 * omega_b * (-ny * ux + nx * uy) + nx * acx + ny * acy
 
 
+@njit(cache=True, inline="always")
+def press_noise(accel, speed, spin_a, spin_b, reach_a, reach_b, still):
+    """Rounding of ``press_rate``: a curvature within this of 0 is neither pressed nor free.
+
+    ``accel`` and ``speed`` are the magnitudes of the relative acceleration and
+    velocity, ``spin`` the absolute angular velocities, ``reach`` the bounding
+    radii (0 and 0 for a circle a, whose spin does not count), ``still`` the
+    rounding of the contact's velocities (``pge.core.predict.still_speed``),
+    which the turning frame multiplies into the curvature.
+    """
+    spin = spin_a * reach_a + spin_b * reach_b
+    own = _STILL * (accel + spin_a * spin_a * reach_a + spin_b * spin_b * reach_b + 2.0 * spin_b * (speed + spin))
+    return own + 2.0 * (spin_a + spin_b) * still
+
+
 @njit(cache=True)
 def _patch(geo, n_a, n_b, ox, oy, vx, vy, omega_a, omega_b, face, tie):
     """Contact point (relative to b's centroid), normal (b towards a) and approach rate of a face.
@@ -434,6 +449,7 @@ def rotating_search(
     circle,
     horizon,
     budget,
+    still=0.0,
 ):
     """First contact of a (circle or polygon) with polygon b, both rotating: ``(t, feature, iterations)``.
 
@@ -496,12 +512,12 @@ def rotating_search(
             curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, omega_a, omega_b)
         # A rate that is only rounding (a corner at the end of its sweep) is no approach:
         # reporting it would start an endless run of zero-time contacts.
-        still = _STILL * (math.hypot(dvx, dvy) + spin)
+        still = max(still, _STILL * (math.hypot(dvx, dvy) + spin))
         if approach < -still:
             return 0.0, feature, 0
         # Touching, not separating and pressed shut (gravity on a corner): a contact now,
         # or the shapes would sink into each other unseen.
-        pressing = _STILL * (accel + swing_a + swing_b + 2.0 * spin_b * (math.hypot(dvx, dvy) + spin))
+        pressing = press_noise(accel, math.hypot(dvx, dvy), spin_a, spin_b, reach_a, reach_b, still)
         if approach <= still and curvature < -pressing:
             return 0.0, feature, 0
         # Touching and not approaching: the contact now ending is no new one.
@@ -637,7 +653,7 @@ def _feature(geo, ox, oy, radius, outline, start_b, n_a, n_b, angle_b, circle):
 
 
 @njit(cache=True)
-def rotating_circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, theta0, omega, horizon):
+def rotating_circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, theta0, omega, horizon, still=0.0):
     """First contact of a circle (a) and a translating, rotating convex polygon (b).
 
     ``(px, py)``, ``(vx, vy)``, ``(ax, ay)``: the circle's centre, velocity and
@@ -648,6 +664,8 @@ def rotating_circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, t
     about 1e-12 s before the first contact and never after it. Feature: edge
     ``k`` is ``k``, corner ``k`` is ``-(k + 1)``; ``CHECKPOINT`` if the search
     budget ran out (then ``t`` is a time before which there is no contact).
+    Touching shapes closing slower than ``still`` (at least the search's own
+    rounding estimate; ``pge.core.predict.still_speed``) are not approaching.
     """
     if omega == 0.0:
         c = math.cos(theta0)
@@ -664,16 +682,19 @@ def rotating_circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, t
             start,
             n,
             horizon,
+            still,
         )
     t, feature, _ = rotating_search(
-        px, py, vx, vy, ax, ay, outline, 0, 0, 0.0, 0.0, start, n, theta0, omega, radius, True, horizon, MAX_ITERATIONS
+        px, py, vx, vy, ax, ay, outline, 0, 0, 0.0, 0.0, start, n, theta0, omega, radius, True, horizon, MAX_ITERATIONS,
+        still,
     )
     return t, feature
 
 
 @njit(cache=True)
 def rotating_polygon_polygon(
-    dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, theta_a, omega_a, start_b, n_b, theta_b, omega_b, horizon
+    dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, theta_a, omega_a, start_b, n_b, theta_b, omega_b, horizon,
+    still=0.0,
 ):
     """First contact of two translating, rotating convex polygons within ``[0, horizon]``.
 
@@ -682,11 +703,12 @@ def rotating_polygon_polygon(
     at angle ``theta + omega t``. Returns ``(t, feature)`` with ``t`` as in
     ``rotating_circle_polygon``; feature ``k < n_b``: edge ``k`` of b struck by a
     vertex of a, ``n_b + k``: edge ``k`` of a struck by a vertex of b;
-    ``CHECKPOINT`` if the search budget ran out.
+    ``CHECKPOINT`` if the search budget ran out. ``still`` as in
+    ``rotating_circle_polygon``.
     """
     if omega_a == 0.0 and omega_b == 0.0:
         if theta_a == 0.0 and theta_b == 0.0:
-            return polygon_polygon(dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, start_b, n_b, horizon)
+            return polygon_polygon(dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, start_b, n_b, horizon, still)
         # Work in b's frame, where a is turned by theta_a - theta_b.
         rows = np.empty((n_a + n_b, 5))
         _place(outline, start_a, n_a, theta_a - theta_b, rows, 0)
@@ -706,6 +728,7 @@ def rotating_polygon_polygon(
             n_a,
             n_b,
             horizon,
+            still,
         )
     t, feature, _ = rotating_search(
         dx,
@@ -727,6 +750,7 @@ def rotating_polygon_polygon(
         False,
         horizon,
         MAX_ITERATIONS,
+        still,
     )
     return t, feature
 

@@ -1,0 +1,70 @@
+"""Overlap of two bodies now: the validation of a scene, and the check a teleport must pass.
+
+``overlap_depth`` measures how far two bodies interpenetrate at ``P[TIME]``
+(negative when apart); ``find_overlap`` looks for a pair among some bodies and
+their grid neighbours that overlaps by more than a tolerance. The World uses
+them to refuse bodies placed into others; the contact code uses them before it
+moves a body by hand (a turning polygon settling flat).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from pge.core import layout as L
+from pge.core.grid import gather
+from pge.core.motion import orient, state_at
+from pge.toi.circle_polygon import closest_feature
+from pge.toi.polygon_polygon import minkowski_faces
+
+_INF = math.inf
+CIRCLE = 0
+
+
+@njit(cache=True)
+def overlap_depth(S, i, j):
+    """Overlap depth of bodies ``i`` and ``j`` at ``P[TIME]`` (negative: apart; for two
+    polygons a lower bound on the distance)."""
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    P = S[3]
+    orient(F, I, OL, S[18], i, P[L.TIME])
+    orient(F, I, OL, S[18], j, P[L.TIME])
+    xi, yi, _, _ = state_at(F, i, P[L.TIME])
+    xj, yj, _, _ = state_at(F, j, P[L.TIME])
+    if I[i, L.KIND] == CIRCLE and I[j, L.KIND] == CIRCLE:
+        return F[i, L.RADIUS] + F[j, L.RADIUS] - math.hypot(xi - xj, yi - yj)
+    if I[i, L.KIND] == CIRCLE:
+        return -closest_feature(xi - xj, yi - yj, F[i, L.RADIUS], OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N])[3]
+    if I[j, L.KIND] == CIRCLE:
+        return -closest_feature(xj - xi, yj - yi, F[j, L.RADIUS], OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N])[3]
+    faces = minkowski_faces(OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], I[j, L.OUTLINE_START], I[j, L.OUTLINE_N])
+    best = -_INF
+    for f in range(faces.shape[0]):
+        s = faces[f, 0] * (xi - xj) + faces[f, 1] * (yi - yj) + faces[f, 2]
+        if s > best:
+            best = s
+    return -best
+
+
+@njit(cache=True)
+def find_overlap(S, ids, tolerance):
+    """First pair ``(i, j, depth)`` among ``ids`` and their neighbours overlapping by more
+    than ``tolerance`` times their bounding radii; ``(-1, -1, 0.0)`` when there is none."""
+    F = S[0]
+    I = S[1]
+    scratch = S[15]
+    for k in range(ids.shape[0]):
+        i = ids[k]
+        n = gather(S, i)
+        for m in range(n):
+            j = scratch[m]
+            if I[i, L.FIXED] != 0 and I[j, L.FIXED] != 0:
+                continue
+            depth = overlap_depth(S, i, j)
+            if depth > tolerance * (F[i, L.REACH] + F[j, L.REACH]):
+                return i, j, depth
+    return -1, -1, 0.0
