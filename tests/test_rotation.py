@@ -663,11 +663,14 @@ def test_random_rotating_scenes_never_overlap_and_stay_in_the_box(seed, count, e
         (1, 10, False, True, False),  # settling flat turned a polygon into a wedged circle (8.2e-6)
         (6, 10, False, True, False),  # the same (3.1e-5)
         (8, 10, False, False, False),  # three circles at one instant: an event storm
+        (11, 10, False, True, False),  # a circle released at a corner, separating by rounding
+        (13, 10, False, True, False),  # and pressed on: no contact was predicted (2.4e-5)
         (4294967294, 12, False, False, True),  # a circle squeezed between two: an event storm
     ],
 )
 def test_surveyed_scenes_that_overlapped_or_stormed(seed, count, elastic, gravity, friction):
-    """Scenes of ``tools/repro/survey.py overlap`` that failed before the shared 'still' rule and
+    """Scenes of ``tools/repro/survey.py overlap`` that failed before the shared 'still' rule
+    (touching pairs whose normal speed is within rounding are at rest relative to each other) and
     the neighbour check of settling flat, over the first 1500 events."""
     result = guarded(run_overlap_scene, seed, count, elastic, gravity, friction, timeout=60.0)
     assert result["first_bad"] is None, f"overlap {result['first_bad']}; {result['events']} events"

@@ -17,14 +17,15 @@ def circle_circle(dx, dy, dvx, dvy, dax, day, radius_a, radius_b, horizon, still
     acceleration of circle a relative to circle b. The gap function is
     ``|d(t)|^2 - (ra + rb)^2``: a quadratic when the relative acceleration is
     zero (equal gravity on both bodies), a quartic otherwise. Touching circles
-    closing slower than ``still`` (the rounding noise of the approach speed,
-    ``pge.core.predict.still_speed``) are not approaching.
+    closing or separating slower than ``still`` (the rounding noise of the
+    approach speed, ``pge.core.predict.still_speed``) are at rest relative to
+    each other: a contact now only if pressed together.
     """
     reach = radius_a + radius_b
     c0 = dx * dx + dy * dy - reach * reach
     c1 = 2.0 * (dx * dvx + dy * dvy)
-    if c0 <= 0.0 and c1 < 0.0 and c1 >= -2.0 * reach * still:
-        c1 = 0.0
+    if c0 <= 0.0 and abs(c1) <= 2.0 * reach * still:
+        c1 = 0.0  # neither approaching nor separating, to rounding
     c2 = dvx * dvx + dvy * dvy
     if dax == 0.0 and day == 0.0:
         return first_descent_quadratic(c0, c1, c2, horizon, True), 0

@@ -93,8 +93,9 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
 
     ``(px, py)``, ``(vx, vy)``, ``(ax, ay)``: the circle's centre, velocity and
     acceleration relative to the polygon's centroid. Returns
-    ``(t, feature)``; t = inf for no contact. Touching shapes closing slower
-    than ``still`` (``pge.core.predict.still_speed``) are not approaching.
+    ``(t, feature)``; t = inf for no contact. Touching shapes closing or
+    separating slower than ``still`` (``pge.core.predict.still_speed``) are at
+    rest relative to each other: a contact now only if pressed together.
     """
     # Overlap at t = 0 is judged for the shape as a whole, by its nearest feature.
     max_s = -_INF
@@ -106,8 +107,8 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
     if max_s <= radius:
         feature, nx, ny, gap = closest_feature(px, py, radius, outline, start, n)
         closing = nx * vx + ny * vy
-        if -still <= closing < 0.0:
-            closing = 0.0
+        if abs(closing) <= still:
+            closing = 0.0  # neither approaching nor separating, to rounding
         if gap <= 0.0 and (closing < 0.0 or (closing == 0.0 and _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny))):
             return 0.0, feature
     best_t = horizon

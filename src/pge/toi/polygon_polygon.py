@@ -69,8 +69,9 @@ def polygon_polygon(dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, start_b, 
 
     ``(dx, dy)``, ``(dvx, dvy)``, ``(dax, day)``: offset, velocity and
     acceleration of a's centroid relative to b's. Returns ``(t, feature)``;
-    t = inf for no contact. Touching shapes closing slower than ``still``
-    (``pge.core.predict.still_speed``) are not approaching.
+    t = inf for no contact. Touching shapes closing or separating slower
+    than ``still`` (``pge.core.predict.still_speed``) are at rest relative to
+    each other: a contact now only if pressed together.
     """
     faces = minkowski_faces(outline, start_a, n_a, start_b, n_b)
     count = n_a + n_b
@@ -82,8 +83,8 @@ def polygon_polygon(dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, start_b, 
             best_s = s
             best_f = f
     closing = faces[best_f, 0] * dvx + faces[best_f, 1] * dvy
-    if best_s <= 0.0 and -still <= closing < 0.0:
-        closing = 0.0
+    if best_s <= 0.0 and abs(closing) <= still:
+        closing = 0.0  # neither approaching nor separating, to rounding
     pressing = faces[best_f, 0] * dax + faces[best_f, 1] * day
     if best_s <= 0.0 and (closing < 0.0 or (closing == 0.0 and pressing < 0.0)):
         return 0.0, best_f
