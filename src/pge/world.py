@@ -17,7 +17,7 @@ from typing import Callable, Iterator
 import numpy as np
 
 from pge.bodies import Body
-from pge.core import engine, grid, motion, queue
+from pge.core import engine, grid, motion, overlap, queue
 from pge.core import layout as L
 from pge.core.state import EngineState
 from pge.events import Collision, Frame, Stop, Timer
@@ -932,7 +932,7 @@ class World:
         for i in ids:
             if not state.I[i, L.FIXED] and math.isnan(state.F[i, L.MASS]):
                 raise ValueError(f"{self._handles[i].label()} is moving but has no mass; give it a mass or fix it")
-        i, j, depth = engine.find_overlap(state.S, np.asarray(ids, dtype=np.int64), OVERLAP_TOLERANCE)
+        i, j, depth = overlap.find_overlap(state.S, np.asarray(ids, dtype=np.int64), OVERLAP_TOLERANCE)
         if i >= 0:
             raise ValueError(
                 f"{self._handles[i].label()} overlaps {self._handles[j].label()} by {depth:.3g} "
@@ -943,7 +943,7 @@ class World:
         """How deeply two bodies overlap now (positive) or how far apart they are (negative;
         for two polygons a lower bound on the distance)."""
         a, b = self._own(a), self._own(b)
-        return float(engine.overlap_depth(self._state.S, a.id, b.id))
+        return float(overlap.overlap_depth(self._state.S, a.id, b.id))
 
     def overlaps(self, tolerance: float = 0.0) -> list[tuple[Body, Body, float]]:
         """Pairs of bodies (not both fixed) overlapping by more than ``tolerance`` now.
@@ -967,7 +967,7 @@ class World:
                     continue
                 if other[2] > span[3] or other[3] < span[2]:
                     continue
-                depth = float(engine.overlap_depth(state.S, i, j))
+                depth = float(overlap.overlap_depth(state.S, i, j))
                 if depth > tolerance:
                     found.append((self._handles[i], self._handles[j], depth))
             active.append(span)

@@ -31,7 +31,6 @@ from pge.core.contact import (
 )
 from pge.core.impulse import contact_impulse
 from pge.core.motion import advance, orient
-from pge.core.overlap import find_overlap, overlap_depth  # noqa: F401 (the World's validation)
 from pge.core.pivot import pivot
 from pge.core.predict import new_mark, place, predict
 from pge.core.response import apply_impulse, contact_response

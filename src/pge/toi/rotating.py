@@ -461,7 +461,9 @@ def rotating_search(
     now, else never later than the first contact and at most about 1e-12 s
     earlier. ``feature`` as in the module docstring, ``CHECKPOINT`` when
     ``budget`` iterations did not suffice (no contact before ``t`` then).
-    ``iterations`` counts the conservative-advancement steps taken.
+    ``iterations`` counts the conservative-advancement steps taken. A touching
+    pair whose normal rate is within ``still`` (or the search's own rounding
+    estimate, if larger) is not approaching.
     """
     rows_a = 0 if circle else n_a
     count = 1 if circle else n_a + n_b
