@@ -95,6 +95,7 @@ STAT_NAMES = (
     "contact_changes",
     "pivot_lifts",
     "unpaid_lifts",
+    "stops",
 )
 (
     S_EVENTS,
@@ -115,8 +116,9 @@ STAT_NAMES = (
     S_CONTACT_CHANGES,
     S_PIVOT_LIFTS,
     S_UNPAID_LIFTS,
-) = range(18)
-NSTATS = 18
+    S_STOPS,
+) = range(19)
+NSTATS = 19
 
 # ---- event kinds (high bits of the heap key; equal times pop in this order) --
 COLLISION, CONTACT_EVENT, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3, 4

@@ -14,6 +14,7 @@ import numpy as np
 from numba import njit
 
 from pge.core import layout as L
+from pge.core.contact import combine, relative_tangential
 from pge.core.impulse import contact_impulse
 from pge.core.predict import still_speed
 from pge.core.response import apply_impulse, contact_response
@@ -168,6 +169,16 @@ def pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     jy = jn * ny + jt * ty
     apply_impulse(F, a, keep_a, turns_a, jx, jy, rax, ray)
     apply_impulse(F, b, keep_b, turns_b, -jx, -jy, rbx, rby)
+    if not paid and _holds_at_rest(S, a) and _holds_at_rest(S, b):
+        # Riders on supports at rest, pressed together too gently to pay for a lift:
+        # friction would stop them within a rest height, so they stop now.
+        for x in (a, b):
+            if I[x, L.SUPPORT] >= 0:
+                F[x, L.VX] = 0.0
+                F[x, L.VY] = 0.0
+                F[x, L.OMEGA] = 0.0
+        S[13][L.S_STOPS] += 1
+        return jn
     if not paid:
         # What the bodies that took part may spend: their energy before the bounce, less
         # what a kept-resting one has now (fixed bodies keep theirs).
@@ -185,6 +196,26 @@ def pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
         if not lift_from_motion(F, free_a, free_b, px, py, nx, ny, budget, SLOWEST * target):
             S[13][L.S_UNPAID_LIFTS] += 1
     return jn
+
+
+@njit(cache=True)
+def _holds_at_rest(S, x):
+    """True if body ``x`` would stay where it is if it stopped: fixed and not moving, or
+    resting on a support that is at rest (no velocity, spin or acceleration) and held there
+    by static friction."""
+    F = S[0]
+    I = S[1]
+    Q = S[4]
+    if I[x, L.FIXED] != 0:
+        return F[x, L.VX] == 0.0 and F[x, L.VY] == 0.0 and F[x, L.OMEGA] == 0.0
+    s = I[x, L.SUPPORT]
+    if s < 0:
+        return False
+    if F[s, L.VX] != 0.0 or F[s, L.VY] != 0.0 or F[s, L.OMEGA] != 0.0 or F[s, L.AX] != 0.0 or F[s, L.AY] != 0.0:
+        return False
+    _, at, an = relative_tangential(S, x, S[3][L.TIME])
+    mu = combine(F[x, L.FRICTION], F[s, L.FRICTION], Q[L.FRICTION_RULE])
+    return an < 0.0 and abs(at) <= -mu * an
 
 
 @njit(cache=True, inline="always")
