@@ -615,3 +615,12 @@ def test_first_descent_is_never_later_than_the_exact_root_property(case, immedia
     t = first_descent(*coeffs, horizon, immediate)
     ref = reference_first_descent(coeffs, horizon, immediate)
     assert lateness(t, ref) <= 0, f"{t!r} is later than the root {mpmath.nstr(ref, 25)}"
+
+
+@pytest.mark.parametrize("c2", [-4.9e-320, -5e-324, -1e-310])
+def test_first_descent_quadratic_with_a_subnormal_curvature_is_never_now(c2):
+    """A gap opening at speed 1 and curving down by a subnormal amount (a friction coefficient of
+    1e-320 gave such a deceleration) closes after more than the largest float: the root
+    overflows, and it must read as 'never', not as 'now' (it once gave 0, an event storm)."""
+    assert first_descent_quadratic(2.7, 1.0, c2, math.inf, True) == math.inf
+    assert first_descent_quadratic(2.7, 1.0, c2, 10.0, True) == math.inf

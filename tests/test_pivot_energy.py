@@ -509,21 +509,25 @@ def _slider_scene(vs, drop_dx, h, mu, e):
 
 
 def _run_slider(vs, drop_dx, h, mu, e):
+    """Run the slider scene for 1 s: the energy gains at collisions, the collisions at which the
+    ball rests on the slider while the slider moves, and the collisions between the two."""
     world, slider, ball = _slider_scene(vs, drop_dx, h, mu, e)
     bodies = [slider, ball]
     before = _scene_energy(world, bodies)
     scale = before + G * 1.5
-    gains, rested_moving = [], 0
+    gains, rested_moving, touches = [], 0, 0
     for event in world.events(1.0):
         if not isinstance(event, Collision):
             continue
-        if ball.resting_on is slider and slider.velocity[0] != 0.0:
+        if {event.a, event.b} == {slider, ball}:
+            touches += 1
+        if ball.resting_on is slider and slider.velocity != (0.0, 0.0):
             rested_moving += 1
         now = _scene_energy(world, bodies)
         if now - before > ENERGY * scale:
             gains.append(f"+{(now - before) / scale:.3g} at {event!r}")
         before = now
-    return gains, rested_moving
+    return gains, rested_moving, touches
 
 
 @pytest.mark.parametrize(
@@ -533,26 +537,35 @@ def _run_slider(vs, drop_dx, h, mu, e):
         # onto the front face; gained 1.6e-5 of the scene's energy before the plastic rest (6e2d5ff)
         (1.20945800422162, 0.036513278337090824, 0.023505130001723343, 0.1498024849023425, 0.042467691317557364),
         (-0.5, -0.01, 0.02, 0.3, 0.05),
+        # onto the leading face of a ball sliding left: rested on it and was carried up its face,
+        # +5e-4 of the scene's energy between two collisions (until the rest rule below)
+        (-1.2479678660117195, -0.032846814999951894, 0.07656223511361117, 0.09048843869574763, 0.22974249316294812),
     ],
 )
-def test_ball_coming_to_rest_on_a_sliding_ball_gains_no_energy(vs, drop_dx, h, mu, e):
-    """A ball dropped onto a ball sliding on the floor (friction, low elasticity) comes to rest on the
-    moving curved support (at least once), and kinetic plus potential energy never rises at a
+def test_ball_dropped_on_a_sliding_ball_does_not_rest_on_it_and_gains_no_energy(vs, drop_dx, h, mu, e):
+    """A ball dropped onto a ball sliding on the floor (friction, low elasticity) strikes it, never
+    rests on it while it moves (a moving curved support turns the contact under its rider, which a
+    rest with a fixed normal would ignore), and kinetic plus potential energy never rises at a
     collision (1e-12 of E + sum m g)."""
-    gains, rested_moving = _run_slider(vs, drop_dx, h, mu, e)
-    assert rested_moving > 0, "the scene does not exercise resting on a moving support"
+    gains, rested_moving, touches = _run_slider(vs, drop_dx, h, mu, e)
+    assert touches > 0, "the ball misses the slider"
+    assert rested_moving == 0
     assert not gains, gains[0]
 
 
-@pytest.mark.xfail(strict=True, reason="ENGINE BUG: a rider resting on a moving curved support is carried up the "
-                   "support's face (its acceleration is the support's plus a tangential slide) while the support's "
-                   "own motion ignores the rider: the support does unpaid work, energy rises between collisions "
-                   "(~5e-4 of the scene here; ~10% of random drops onto the front face)")
-def test_ball_resting_on_the_front_face_of_a_sliding_ball_gains_no_energy():
-    """Reproducer (same check as above): a ball dropped on the leading face of a ball sliding left."""
-    gains, rested_moving = _run_slider(-1.2479678660117195, -0.032846814999951894, 0.07656223511361117,
-                                       0.09048843869574763, 0.22974249316294812)
-    assert rested_moving > 0
+@settings(max_examples=25, deadline=None)
+@given(
+    vs=st.floats(0.3, 1.5).map(lambda v: v * (1 if v > 0.9 else -1)),
+    drop_dx=st.floats(-0.045, 0.045),
+    h=st.floats(0.005, 0.08),
+    mu=st.floats(0.0, 0.8),
+    e=st.floats(0.0, 0.5),
+)
+def test_random_drops_onto_a_sliding_ball_gain_no_energy(vs, drop_dx, h, mu, e):
+    """Random drops onto a sliding ball (about 1 in 10 gained energy while the ball could rest on
+    the moving slider): kinetic plus potential energy never rises at a collision."""
+    gains, rested_moving, _ = _run_slider(vs, drop_dx, h, mu, e)
+    assert rested_moving == 0
     assert not gains, gains[0]
 
 
@@ -566,9 +579,10 @@ def test_spinning_scene_16_finishes_without_event_storm():
     assert world.time == 1.0
 
 
-@pytest.mark.parametrize("seed", [25, 34])
+@pytest.mark.parametrize("seed", [9, 22, 25, 34])
 def test_spinning_scene_energy_never_rises(seed):
-    """Seeds 25 and 34 of the spinning scene (10 bodies, inelastic, gravity, friction): over the first
+    """Seeds 9, 22, 25 and 34 of the spinning scene (9 and 22: riders pressed together or into a
+    wall by friction, which got unpaid lifts before the stop rule) (10 bodies, inelastic, gravity, friction): over the first
     1500 collisions, kinetic plus potential energy never rises at a collision by more than 1e-12 of
     the initial energy plus sum m g (as ``run_energy_scene`` of test_rotation.py)."""
     world, _, bodies = build_spinning_scene(seed, 10, elastic=False, gravity=True, friction=True, frame_rate=None)

@@ -716,7 +716,7 @@ def test_energy_never_increases_at_collisions_without_gravity(seed, count):
     assert result["first_bad"] is None, f"energy gain {result['first_bad']}"
 
 
-@pytest.mark.xfail(strict=False, reason="KNOWN ENGINE BUG (issue 5 open): a polygon wedged between the floor and a resting body runs out of energy and gets the pivot rule's unpaid lift (at most m |g''| h, counted in stats['unpaid_lifts']; 6 of 40 scenes of tools/repro/survey.py energy --gravity, seeds 3 5 7 9 12 27, plus seed 22, a circle against the right wall, not traced); a rest state with two supports is the fix")
+@pytest.mark.xfail(strict=False, reason="KNOWN ENGINE BUG (issue 5 open): a polygon on a corner pinched between the floor and bodies that move or lean on it runs out of energy and gets the pivot rule's unpaid lift (at most m |g''| h, counted in stats['unpaid_lifts']; 5 of 40 scenes of tools/repro/survey.py energy --gravity, seeds 3 5 7 12 27; seeds 9 and 22 were fixed by the stop rule); resting it needs the contact forces of a whole pile")
 @SCENE_SETTINGS
 @given(seed=st.integers(0, 2**32 - 1), count=st.integers(5, 12))
 def test_energy_never_increases_at_collisions_under_gravity(seed, count):

@@ -59,6 +59,7 @@ def main(argv=None):
                 for friction in (False, True):
                     jobs.append(("overlap", seed, args.count, elastic, gravity, friction, args.events))
     failures = {}
+    times = []
     with mp.get_context("fork").Pool(2) as pool:
         pending = [(job, pool.apply_async(_job, (job,))) for job in jobs]
         for job, handle in pending:
@@ -67,10 +68,12 @@ def main(argv=None):
             except mp.TimeoutError:
                 bad, done, seconds = f"no result within {args.timeout:.0f} s", "", args.timeout
             tag = f"elastic={job[3]} gravity={job[4]} friction={job[5]}"
+            times.append((seconds, job[1], tag, done))
             if bad:
                 failures.setdefault(tag, []).append(job[1])
                 print(f"FAIL seed {job[1]} {tag} ({seconds:.1f} s, {done}): {bad}", flush=True)
     print(f"\n{sum(map(len, failures.values()))} of {len(jobs)} scenes failed")
+    print("slowest:", "; ".join(f"seed {seed} {tag} {seconds:.1f} s ({done})" for seconds, seed, tag, done in sorted(times)[-3:]))
     for tag, seeds in sorted(failures.items()):
         print(f"  {tag}: seeds {seeds}")
 

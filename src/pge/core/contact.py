@@ -240,6 +240,11 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
         return False, count
     if I[s, L.KIND] != 0 and F[s, L.OMEGA] != 0.0:
         return False, count
+    if owner < 0 and (F[s, L.VX] != 0.0 or F[s, L.VY] != 0.0 or F[s, L.AX] != 0.0 or F[s, L.AY] != 0.0):
+        # A moving curved support turns the contact under the rider, which resting with a
+        # fixed normal would ignore: carried up the support's face at no cost to the
+        # support, it would gain energy. It bounces (the pivot rule) until the support stops.
+        return False, count
     rel_vx = F[r, L.VX] - F[s, L.VX]
     rel_vy = F[r, L.VY] - F[s, L.VY]
     rel_ax = F[r, L.FREE_AX] - F[s, L.AX]

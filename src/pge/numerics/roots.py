@@ -125,8 +125,11 @@ def _not_late(t, c0, c1, c2, c3, c4, floor):
     it is not certainly positive, ``t`` moves back by the deficit over the
     slope (at least two ulps) and is checked again. A well-conditioned root is
     thus returned at most a few ulps early and never late. Never below
-    ``floor``.
+    ``floor``. A root beyond the largest float (a quotient that overflowed) is inf: the gap
+    never closes in representable time.
     """
+    if not t < _INF:
+        return _INF
     for _ in range(16):
         if t <= floor:
             return floor
