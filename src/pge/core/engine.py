@@ -194,7 +194,7 @@ def _keeps_resting(F, I, OL, x, dx, dy, px, py, approach, rest_height):
     vx = F[x, L.VX]
     vy = F[x, L.VY]
     if abs(vx * mx + vy * my) > 1e-12 * math.hypot(vx, vy):
-        # Its support moves along the rest normal (a curved support sliding by): taking
+        # Its support moves along the rest normal (a tilted edge sliding by): taking
         # the impulse's normal part, it would do work on the pair.
         return False
     along = dx * mx + dy * my

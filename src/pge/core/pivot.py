@@ -91,7 +91,9 @@ def pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     neither converge nor gain energy, and a pivot takes events at intervals
     of about ``2 v_min / |g''|``. The bounce is then done again from the velocities before it
     (``pre``), through ``contact_impulse`` with the restitution this asks for,
-    so friction and the energy guard apply as in any collision. Returns the
+    so friction and the energy guard apply as in any collision; a lift the
+    pair cannot pay for is not given to riders that static friction would hold
+    on supports at rest: they stop instead (``_holds_at_rest``). Returns the
     new normal impulse, or -1.0 if the rule does not apply.
     """
     F = S[0]
