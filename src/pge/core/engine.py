@@ -340,7 +340,7 @@ def collide(S, a, b, feature, t):
     if rested:
         S[13][L.S_RESTS] += 1
     else:
-        redone = pivot(S, a, b, px, py, nx, ny, restitution, mu, pre)
+        redone = pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre)
         if redone >= 0.0:
             impulse = max(redone, 1e-300)
             for x in (a, b):

@@ -73,7 +73,7 @@ def paid_lift(un, ut, knn, knt, ktt, jn, jt, target):
 
 
 @njit(cache=True)
-def pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
+def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
     """Keep a pressed contact that cannot rest from a Zeno run of ever smaller bounces.
 
     A polygon rocking on a corner under gravity strikes it ever more gently
@@ -93,7 +93,9 @@ def pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     (``pre``), through ``contact_impulse`` with the restitution this asks for,
     so friction and the energy guard apply as in any collision; a lift the
     pair cannot pay for is not given to riders that static friction would hold
-    on supports at rest: they stop instead (``_holds_at_rest``). Returns the
+    on supports at rest: they stop instead (``_holds_at_rest``). ``owner`` is the
+    body whose face the contact is on (``-1``: a circle round a corner or a circle),
+    which says how the normal turns (``press_rate``). Returns the
     new normal impulse, or -1.0 if the rule does not apply.
     """
     F = S[0]
@@ -112,15 +114,33 @@ def pivot(S, a, b, px, py, nx, ny, restitution, mu, pre):
     spin_b = wb if I[b, L.KIND] != CIRCLE else 0.0
     dax = F[a, L.AX] - F[b, L.AX]
     day = F[a, L.AY] - F[b, L.AY]
+    ox = F[a, L.X] - F[b, L.X]
+    oy = F[a, L.Y] - F[b, L.Y]
+    # How the normal turns (see press_rate): with the face's owner, or round a curve.
+    point_x = rbx
+    point_y = rby
+    bend = 0.0
+    omega_face = spin_b if owner == b else spin_a
+    if I[a, L.KIND] == CIRCLE:
+        if owner == b:  # the centre against b's face
+            point_x = ox
+            point_y = oy
+        elif I[b, L.KIND] == CIRCLE:  # centre against centre
+            point_x = 0.0
+            point_y = 0.0
+            bend = 1.0 / (F[a, L.RADIUS] + F[b, L.RADIUS])
+            omega_face = 0.0
+        else:  # the centre round b's corner
+            bend = 1.0 / F[a, L.RADIUS]
+            omega_face = 0.0
     curvature = press_rate(
-        rbx, rby, nx, ny, F[a, L.X] - F[b, L.X], F[a, L.Y] - F[b, L.Y], va_x - vb_x, va_y - vb_y,
-        dax, day, spin_a, spin_b,
+        point_x, point_y, nx, ny, ox, oy, va_x - vb_x, va_y - vb_y, dax, day, spin_a, spin_b, omega_face, bend
     )
     # Within rounding of "pressed" counts as pressed: the kernel may have judged it so.
     still = still_speed(F, a, b, F[a, L.X], F[a, L.Y], va_x, va_y, F[b, L.X], F[b, L.Y], vb_x, vb_y)
     noise = press_noise(
         math.hypot(dax, day), math.hypot(va_x - vb_x, va_y - vb_y), abs(spin_a), abs(spin_b),
-        F[a, L.REACH] if I[a, L.KIND] != CIRCLE else 0.0, F[b, L.REACH], still,
+        F[a, L.REACH] if I[a, L.KIND] != CIRCLE else 0.0, F[b, L.REACH], still, bend,
     )
     if not curvature < noise:
         return -1.0

@@ -285,15 +285,24 @@ def _rate_at(px, py, nx, ny, ox, oy, vx, vy, omega_a, omega_b):
 
 
 @njit(cache=True)
-def press_rate(px, py, nx, ny, ox, oy, vx, vy, ax, ay, omega_a, omega_b):
+def press_rate(px, py, nx, ny, ox, oy, vx, vy, ax, ay, omega_a, omega_b, omega_face, bend):
     """Second derivative of the gap at a contact point ``p`` with normal ``n`` (b towards
     a) while the two touch: negative when the contact is being pressed shut.
 
-    ``p`` and ``o = D`` are relative to b's centroid, ``v = D'``, ``a = D''``.
-    The normal turns with b, so ``g'' = 2 omega_b (J n) . u + n . A`` with
-    ``u`` and ``A`` the relative velocity and acceleration of the material
-    points at ``p`` (centripetal terms included; a circle passes ``omega_a =
-    0``, its centre standing for its rim).
+    ``p`` and ``o = D`` are relative to b's centroid, ``v = D'``, ``a = D''``;
+    ``u`` and ``A`` below are the relative velocity and acceleration of the
+    material points at ``p`` (a's minus b's, centripetal terms included). The
+    normal turns in one of two ways:
+
+    - with a face, ``n`` its normal and ``omega_face`` the spin of the body
+      that owns it: ``g'' = 2 omega_face (J n) . u + n . A``;
+    - round a curve, ``g = |a's point - b's point| - R`` with ``bend = 1 / R``
+      (a circle's centre against a corner, ``R`` its radius; two circles' centres,
+      ``R`` the sum of the radii): ``g'' = n . A + bend |u_t|^2``, and
+      ``omega_face = 0``.
+
+    A circle a stands for its centre: it passes ``omega_a = 0`` and ``p = o``
+    on a face (the rim point would add a spurious ``omega_b^2 r``).
     """
     rx = px - ox
     ry = py - oy
@@ -301,22 +310,25 @@ def press_rate(px, py, nx, ny, ox, oy, vx, vy, ax, ay, omega_a, omega_b):
     uy = vy + omega_a * rx - omega_b * px
     acx = ax - omega_a * omega_a * rx + omega_b * omega_b * px
     acy = ay - omega_a * omega_a * ry + omega_b * omega_b * py
-    return 2.0 * omega_b * (-ny * ux + nx * uy) + nx * acx + ny * acy
+    slip = -ny * ux + nx * uy
+    return 2.0 * omega_face * slip + nx * acx + ny * acy + bend * slip * slip
 
 
 @njit(cache=True, inline="always")
-def press_noise(accel, speed, spin_a, spin_b, reach_a, reach_b, still):
+def press_noise(accel, speed, spin_a, spin_b, reach_a, reach_b, still, bend):
     """Rounding of ``press_rate``: a curvature within this of 0 is neither pressed nor free.
 
     ``accel`` and ``speed`` are the magnitudes of the relative acceleration and
     velocity, ``spin`` the absolute angular velocities, ``reach`` the bounding
-    radii (0 and 0 for a circle a, whose spin does not count), ``still`` the
-    rounding of the contact's velocities (``pge.core.predict.still_speed``),
-    which the turning frame multiplies into the curvature.
+    radii (0 and 0 for a circle a, whose spin does not count), ``bend`` as in
+    ``press_rate``, ``still`` the rounding of the contact's velocities
+    (``pge.core.predict.still_speed``), which the turning normal multiplies
+    into the curvature.
     """
-    spin = spin_a * reach_a + spin_b * reach_b
-    own = _STILL * (accel + spin_a * spin_a * reach_a + spin_b * spin_b * reach_b + 2.0 * spin_b * (speed + spin))
-    return own + 2.0 * (spin_a + spin_b) * still
+    slip = speed + spin_a * reach_a + spin_b * reach_b
+    turn = 2.0 * max(spin_a, spin_b) + bend * slip
+    own = _STILL * (accel + spin_a * spin_a * reach_a + spin_b * spin_b * reach_b + turn * slip)
+    return own + 2.0 * (spin_a + spin_b + bend * slip) * still
 
 
 @njit(cache=True)
@@ -507,11 +519,18 @@ def rotating_search(
             feature, px, py, nx, ny, approach = _circle_patch(
                 ox, oy, vx, vy, radius, outline, start_b, n_b, theta_b, omega_b
             )
-            curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, 0.0, omega_b)
+            if feature >= 0:  # the centre against b's face
+                bend = 0.0
+                curvature = press_rate(ox, oy, nx, ny, ox, oy, vx, vy, dax, day, 0.0, omega_b, omega_b, bend)
+            else:  # the centre round b's corner
+                bend = 1.0 / radius
+                curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, 0.0, omega_b, 0.0, bend)
         else:
             px, py, nx, ny, approach = _patch(geo, n_a, n_b, ox, oy, vx, vy, omega_a, omega_b, face, tie)
             feature = face
-            curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, omega_a, omega_b)
+            bend = 0.0
+            omega_face = omega_b if face < n_b else omega_a
+            curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, omega_a, omega_b, omega_face, bend)
         # A rate that is only rounding (a corner at the end of its sweep) is no approach:
         # reporting it would start an endless run of zero-time contacts.
         still = max(still, _STILL * (math.hypot(dvx, dvy) + spin))
@@ -519,7 +538,7 @@ def rotating_search(
             return 0.0, feature, 0
         # Touching, not separating and pressed shut (gravity on a corner): a contact now,
         # or the shapes would sink into each other unseen.
-        pressing = press_noise(accel, math.hypot(dvx, dvy), spin_a, spin_b, reach_a, reach_b, still)
+        pressing = press_noise(accel, math.hypot(dvx, dvy), spin_a, spin_b, reach_a, reach_b, still, bend)
         if approach <= still and curvature < -pressing:
             return 0.0, feature, 0
         # Touching and not approaching: the contact now ending is no new one.
