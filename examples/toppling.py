@@ -9,13 +9,13 @@ What it shows: rotation with exact contact times (corners of turning polygons
 are predicted, never stepped), the rigid-body impulse with friction
 (``obj.friction(mu)``: impacts start and stop spins), ``obj.rotate(angle)``
 and ``obj.rvel(omega)`` to start bodies turned and turning, and resting
-contact ending the bounces: after a couple of seconds nothing moves and no
-more events happen.
+contact and sleeping piles ending the bounces: after a couple of seconds
+nothing moves and no more events happen.
 
 Run it in a window with ``python examples/toppling.py`` (ESC quits), or
 headless with ``PGE_HEADLESS=1 python examples/toppling.py``. At the end it
 prints one ``RESULT`` line: whether the block toppled (it lies on its side),
-how many bodies rest, whether the last seconds were quiet (no event), and
+how many bodies rest or sleep, whether the last seconds were quiet (no event), and
 whether any two bodies overlap.
 """
 
@@ -71,7 +71,7 @@ pge.run(DURATION)
 
 angle = block.get_angle()
 toppled = abs(abs(math.remainder(angle, math.pi)) - math.pi / 2) < 1e-6
-resting = sum(1 for mover in movers if mover.body.resting_on is not None)
+resting = sum(1 for mover in movers if mover.body.resting_on is not None or mover.body.asleep)
 quiet = events["last"] < QUIET_FROM
 overlapping = len(block.body.world.overlaps(1e-9))
 print(

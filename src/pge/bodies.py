@@ -167,6 +167,13 @@ class Body:
         return world._handles.get(support) if support >= 0 else None
 
     @property
+    def asleep(self) -> bool:
+        """True while the body sleeps in a pile that contact forces hold still (it makes
+        no events until something touches it or it is changed)."""
+        _, world = self._row()
+        return bool(world._state.I[self.id, L.SLEEP_NEXT] >= 0)
+
+    @property
     def inertia(self) -> float | None:
         """Moment of inertia about the centroid (mass x shape's inertia per mass); None
         without a mass."""

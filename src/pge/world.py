@@ -275,7 +275,8 @@ class World:
         F[i] = 0.0
         I[i] = 0
         I[i, L.CELL] = I[i, L.NEXT] = I[i, L.PREV] = -1
-        I[i, L.SUPPORT] = I[i, L.RIDER_HEAD] = I[i, L.EDGE_OWNER] = -1
+        I[i, L.SUPPORT] = I[i, L.RIDER_HEAD] = I[i, L.EDGE_OWNER] = I[i, L.SLEEP_NEXT] = -1
+        F[i, L.SLEEP_TRY] = -math.inf
         F[i, L.FRICTION] = friction
         F[i, L.X], F[i, L.Y] = position
         F[i, L.T0] = self.time

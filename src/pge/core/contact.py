@@ -48,8 +48,8 @@ _TURN_OVERLAP = 1e-12
 
 @njit(cache=True, inline="always")
 def grounded(I, s):
-    """True if body ``s`` cannot give way: fixed, or resting on a grounded body."""
-    return I[s, L.FIXED] != 0 or I[s, L.SUPPORT] >= 0
+    """True if body ``s`` cannot give way: fixed, asleep, or resting on a grounded body."""
+    return I[s, L.FIXED] != 0 or I[s, L.SUPPORT] >= 0 or I[s, L.SLEEP_NEXT] >= 0
 
 
 @njit(cache=True, inline="always")

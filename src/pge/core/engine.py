@@ -29,11 +29,13 @@ from pge.core.contact import (
     settle_acceleration,
     try_rest,
 )
+from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
 from pge.core.motion import advance, orient
 from pge.core.pivot import pivot
 from pge.core.predict import new_mark, place, predict
 from pge.core.response import apply_impulse, contact_response
+from pge.core.sleep import try_sleep, wake
 from pge.core.queue import pop_earliest
 from pge.toi.circle_circle import circle_circle_contact
 from pge.toi.circle_polygon import circle_polygon_contact
@@ -102,14 +104,20 @@ def touch_group(S, ids, count):
 
 @njit(cache=True)
 def release_body(S, i, t, out):
-    """Release body ``i`` from its support (if resting) and every body resting on it.
+    """Wake body ``i``'s island (if asleep) or, for a fixed body, the islands near it;
+    release it from its support (if resting) and every body resting on it.
 
     The bodies whose motion changes are written to ``out``; returns how many.
     Python calls this before changing a body through the API.
     """
     I = S[1]
     stats = S[13]
-    count = 0
+    count = wake(S, i, out, 0, t)
+    if I[i, L.FIXED] != 0 and stats[L.S_SLEEPS] > 0:
+        # A fixed body may hold up a sleeping pile: wake every one near it.
+        near = gather(S, i)
+        for k in range(near):
+            count = wake(S, S[15][k], out, count, t)
     if I[i, L.SUPPORT] >= 0:
         advance(S[0], i, t)
         detach(S, i)
@@ -276,6 +284,9 @@ def collide(S, a, b, feature, t):
     Q = S[4]
     out = S[14]
     group = S[17]
+    # Something reached a sleeping pile: it wakes (at rest) and takes part as it is.
+    woken = wake(S, a, group, 0, t)
+    woken = wake(S, b, group, woken, t)
     advance(F, a, t)
     advance(F, b, t)
     orient(F, I, S[2], S[18], a, t)
@@ -296,7 +307,7 @@ def collide(S, a, b, feature, t):
     restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
     mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
     impulse = 0.0
-    count = 0
+    count = woken
     if normal_speed < 0.0:
         keep_a = _keeps_resting(F, I, S[2], a, nx, ny, px, py, -normal_speed, S[3][L.REST_HEIGHT])
         keep_b = _keeps_resting(F, I, S[2], b, -nx, -ny, px, py, -normal_speed, S[3][L.REST_HEIGHT])
@@ -340,7 +351,7 @@ def collide(S, a, b, feature, t):
     if rested:
         S[13][L.S_RESTS] += 1
     else:
-        redone = pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre)
+        redone, kicked = pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre)
         if redone >= 0.0:
             impulse = max(redone, 1e-300)
             for x in (a, b):
@@ -351,7 +362,10 @@ def collide(S, a, b, feature, t):
                         detach(S, x)
                         S[13][L.S_RELEASES] += 1
                     count = release_riders(S, x, group, count, t)
-    if impulse == 0.0 and count == 0:
+            if kicked:
+                # A pressed contact at rest: the pile around it may sleep instead.
+                _, count = try_sleep(S, a, b, group, count, t)
+    if impulse == 0.0 and count == woken:
         # A graze: nothing changed, but look again from here.
         if I[a, L.FIXED] == 0:
             group[count] = a

@@ -28,7 +28,8 @@ SPRING_AX, SPRING_AY = 32, 33  # acceleration from springs, held constant betwee
 INV_INERTIA = 34  # 1 / moment of inertia about the reference point, 0 for fixed bodies
 ORIENT = 35  # the angle the body's outline rows in OL are turned to
 HELD_OMEGA = 36  # angular velocity kept while fixed, restored by unfix
-NF = 37
+SLEEP_TRY = 37  # when the body last failed to fall asleep (pge.core.sleep)
+NF = 38
 
 # ---- I: int64 per body -------------------------------------------------------
 KIND = 0  # pge.toi.CIRCLE or POLYGON
@@ -47,7 +48,8 @@ RIDER_NEXT, RIDER_PREV = 14, 15  # siblings in the support's rider list
 REST_MODE = 16  # NOT_RESTING, SLIDING or STUCK (static friction holds it)
 EDGE_OWNER = 17  # while resting on a flat contact: the body whose edge carries it (-1: curved contact)
 EDGE_INDEX = 18  # that edge's index in its owner's outline
-NI = 19
+SLEEP_NEXT = 19  # while asleep: the next body of its island (a ring); -1 when awake
+NI = 20
 
 NOT_RESTING, SLIDING, STUCK = 0, 1, 2
 
@@ -96,6 +98,8 @@ STAT_NAMES = (
     "pivot_lifts",
     "unpaid_lifts",
     "stops",
+    "sleeps",
+    "wakes",
 )
 (
     S_EVENTS,
@@ -117,8 +121,10 @@ STAT_NAMES = (
     S_PIVOT_LIFTS,
     S_UNPAID_LIFTS,
     S_STOPS,
-) = range(19)
-NSTATS = 19
+    S_SLEEPS,
+    S_WAKES,
+) = range(21)
+NSTATS = 21
 
 # ---- event kinds (high bits of the heap key; equal times pop in this order) --
 COLLISION, CONTACT_EVENT, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3, 4

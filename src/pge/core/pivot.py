@@ -96,7 +96,8 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
     on supports at rest: they stop instead (``_holds_at_rest``). ``owner`` is the
     body whose face the contact is on (``-1``: a circle round a corner or a circle),
     which says how the normal turns (``press_rate``). Returns the
-    new normal impulse, or -1.0 if the rule does not apply.
+    new normal impulse, or -1.0 if the rule does not apply, and whether the contact
+    was lifted from (nearly) at rest.
     """
     F = S[0]
     I = S[1]
@@ -143,7 +144,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
         F[a, L.REACH] if I[a, L.KIND] != CIRCLE else 0.0, F[b, L.REACH], still, bend,
     )
     if not curvature < noise:
-        return -1.0
+        return -1.0, False
     ux = va_x - wa * ray - (vb_x - wb * rby)
     uy = va_y + wa * rax - (vb_y + wb * rbx)
     un = ux * nx + uy * ny
@@ -162,7 +163,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
     now_x = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
     now_y = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
     if now_x * nx + now_y * ny >= target:
-        return -1.0
+        return -1.0, False
     # Bounce again from the velocities before the collision.
     F[a, L.VX] = va_x
     F[a, L.VY] = va_y
@@ -176,7 +177,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
     bnn, bnt, btt = contact_response(F, b, keep_b, turns_b, rbx, rby, nx, ny, tx, ty)
     knn = ann + bnn
     if not knn > 0.0:
-        return -1.0
+        return -1.0, False
     knt = ant + bnt
     ktt = att + btt
     jn = 0.0
@@ -200,7 +201,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
                 F[x, L.VY] = 0.0
                 F[x, L.OMEGA] = 0.0
         S[13][L.S_STOPS] += 1
-        return jn
+        return jn, kick
     if not paid:
         # What the bodies that took part may spend: their energy before the bounce, less
         # what a kept-resting one has now (fixed bodies keep theirs).
@@ -217,7 +218,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
         free_b = b if not keep_b else -1
         if not lift_from_motion(F, free_a, free_b, px, py, nx, ny, budget, SLOWEST * target):
             S[13][L.S_UNPAID_LIFTS] += 1
-    return jn
+    return jn, kick
 
 
 @njit(cache=True)

@@ -19,10 +19,12 @@ class EngineState:
     def __init__(self, capacity: int = 64, event_capacity: int = 1024) -> None:
         self.n = 0  # body rows in use (removed bodies keep their rows)
         self.F = np.zeros((capacity, L.NF))
+        self.F[:, L.SLEEP_TRY] = -np.inf
         self.I = np.zeros((capacity, L.NI), dtype=np.int64)
         self.I[:, L.CELL] = -1
         self.I[:, L.SUPPORT] = -1
         self.I[:, L.RIDER_HEAD] = -1
+        self.I[:, L.SLEEP_NEXT] = -1
         self.OL = np.zeros((64, 5))  # polygon outlines turned to each body's ORIENT angle
         self.OB = np.zeros((64, 5))  # the same outlines unturned (angle 0): the rotating kernels' input
         self.n_outline = 0
@@ -83,12 +85,14 @@ class EngineState:
         if self.n == self.F.shape[0]:
             capacity = 2 * self.F.shape[0]
             F = np.zeros((capacity, L.NF))
+            F[self.n :, L.SLEEP_TRY] = -np.inf
             F[: self.n] = self.F[: self.n]
             I = np.zeros((capacity, L.NI), dtype=np.int64)
             I[: self.n] = self.I[: self.n]
             I[self.n :, L.CELL] = -1
             I[self.n :, L.SUPPORT] = -1
             I[self.n :, L.RIDER_HEAD] = -1
+            I[self.n :, L.SLEEP_NEXT] = -1
             self.F, self.I = F, I
             self.scratch = np.zeros(capacity, dtype=np.int64)
             pending = np.zeros(4 * capacity + 16, dtype=np.int64)
