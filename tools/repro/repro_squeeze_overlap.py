@@ -1,0 +1,21 @@
+"""An overlap in a four-body squeeze on a frictionless floor: scene seed 0 of tests/test_rotation.py
+(10 bodies, inelastic, gravity, no friction), run for the full 10 s. At t = 8.10676 circle 10,
+resting on sliding polygon 12, and polygon 13, sliding on the floor, are found 4.5e-9 apart
+inside each other when polygon 8 pushes 13 into the circle; the squeeze then resolves with
+overlaps up to 3.3e-6 of their sizes (the tests allow 1e-9). Measured 2026-11-22 at 22b4600;
+at 4d7ebad the same scene took another path (rounding) and did not overlap. Expected: no overlap
+beyond 1e-9 at any event."""
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "tests"))
+from test_rotation import build_spinning_scene, worst_overlap  # noqa: E402
+
+world, walls, bodies = build_spinning_scene(0, 10, elastic=False, gravity=True, friction=False)
+worst = 0.0
+for event in world.events(8.2):
+    depth, what = worst_overlap(world, bodies)
+    if depth > 1e-9 and depth > worst:
+        worst = depth
+        print(f"t = {event.time:.9f}: overlap {depth:.3g} ({what})", flush=True)
+print(f"worst overlap {worst:.3g}")
