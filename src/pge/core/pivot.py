@@ -18,6 +18,7 @@ from pge.core.contact import combine, relative_tangential
 from pge.core.impulse import contact_impulse
 from pge.core.predict import still_speed
 from pge.core.response import apply_impulse, contact_response
+from pge.numerics.linalg import solve_spd
 from pge.toi.rotating import press_noise, press_rate
 
 CIRCLE = 0
@@ -318,7 +319,7 @@ def lift_from_motion(F, a, b, px, py, nx, ny, budget, slowest):
             d[i] += C[i, q] * v[q]
             for j in range(rows):
                 A[i, j] += C[i, q] * w[q] * C[j, q]
-    lam = _solve_spd(A, d)
+    lam = solve_spd(A, d, 1e-300)
     least = 0.0
     for i in range(rows):
         least += 0.5 * lam[i] * d[i]
@@ -330,10 +331,10 @@ def lift_from_motion(F, a, b, px, py, nx, ny, budget, slowest):
         # (d0^T A^-1 d0 + 2 u (A^-1 d0)_0 + u^2 (A^-1)_00) / 2, d0 = d without its speed.
         spent = budget * (1.0 - 1e-9)
         d[0] = 0.0
-        base = _solve_spd(A, d)
+        base = solve_spd(A, d, 1e-300)
         unit = np.zeros(rows)
         unit[0] = 1.0
-        column = _solve_spd(A, unit)
+        column = solve_spd(A, unit, 1e-300)
         c0 = 0.0
         for i in range(rows):
             c0 += base[i] * d[i]
@@ -346,7 +347,7 @@ def lift_from_motion(F, a, b, px, py, nx, ny, budget, slowest):
         if not speed >= slowest:
             return False
         d[0] = speed
-        lam = _solve_spd(A, d)
+        lam = solve_spd(A, d, 1e-300)
         s = 0.0
     best = np.zeros(dof)
     for q in range(dof):
@@ -358,32 +359,3 @@ def lift_from_motion(F, a, b, px, py, nx, ny, budget, slowest):
         F[x, L.VY] = best[3 * k + 1] + s * (v[3 * k + 1] - best[3 * k + 1])
         F[x, L.OMEGA] = best[3 * k + 2] + s * (v[3 * k + 2] - best[3 * k + 2])
     return True
-
-
-@njit(cache=True)
-def _solve_spd(A, d):
-    """Solve ``A x = d`` for a small symmetric positive definite ``A`` (Cholesky)."""
-    n = A.shape[0]
-    Lo = np.zeros((n, n))
-    for i in range(n):
-        for j in range(i + 1):
-            total = A[i, j]
-            for k in range(j):
-                total -= Lo[i, k] * Lo[j, k]
-            if i == j:
-                Lo[i, i] = math.sqrt(max(total, 1e-300))
-            else:
-                Lo[i, j] = total / Lo[j, j]
-    y = np.empty(n)
-    for i in range(n):
-        total = d[i]
-        for k in range(i):
-            total -= Lo[i, k] * y[k]
-        y[i] = total / Lo[i, i]
-    x = np.empty(n)
-    for i in range(n - 1, -1, -1):
-        total = y[i]
-        for k in range(i + 1, n):
-            total -= Lo[k, i] * x[k]
-        x[i] = total / Lo[i, i]
-    return x

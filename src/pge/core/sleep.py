@@ -31,6 +31,7 @@ from pge.core import layout as L
 from pge.core.contact import combine, detach, release_riders
 from pge.core.grid import gather
 from pge.core.motion import advance, orient
+from pge.numerics.linalg import solve_spd
 
 CIRCLE = 0
 #: the most bodies one island may have (larger piles keep bouncing)
@@ -116,8 +117,6 @@ def try_sleep(S, a, b, out, count, t):
             n += 1
     if n == 0:
         return False, count
-    if n == 2 and a == b:
-        n = 1
     # Contacts: (i, j, point x, point y, normal x, normal y), normal from j towards i.
     pairs = np.empty((MAX_POINTS, 2), dtype=np.int64)
     geometry = np.empty((MAX_POINTS, 4))
@@ -485,25 +484,6 @@ def _passive_fit(A, b, passive, z):
     ridge = 1e-13 * ridge / p + 1e-300
     for u in range(p):
         M[u, u] += ridge
-    # Cholesky
-    Lo = np.zeros((p, p))
+    solution = solve_spd(M, rhs, ridge)
     for u in range(p):
-        for v in range(u + 1):
-            total = M[u, v]
-            for k in range(v):
-                total -= Lo[u, k] * Lo[v, k]
-            if u == v:
-                Lo[u, u] = math.sqrt(max(total, ridge))
-            else:
-                Lo[u, v] = total / Lo[v, v]
-    y = np.empty(p)
-    for u in range(p):
-        total = rhs[u]
-        for k in range(u):
-            total -= Lo[u, k] * y[k]
-        y[u] = total / Lo[u, u]
-    for u in range(p - 1, -1, -1):
-        total = y[u]
-        for k in range(u + 1, p):
-            total -= Lo[k, u] * z[index[k]]
-        z[index[u]] = total / Lo[u, u]
+        z[index[u]] = solution[u]
