@@ -13,6 +13,7 @@ either way.
 from __future__ import annotations
 
 import math
+from decimal import Decimal
 
 import numpy as np
 import pytest
@@ -431,6 +432,31 @@ def test_circle_polygon_immediate_and_separating_rules():
     assert circle_polygon(0.0, 0.75, 0.0, 0.0, 0.0, -9.81, 0.25, rows, 0, 4, 1.0)[0] == 0.0
     t, _ = circle_polygon(0.0, 0.75, 0.0, 1.0, 0.0, -9.81, 0.25, rows, 0, 4, 1.0)
     assert t == pytest.approx(2.0 / 9.81, rel=1e-12)
+
+
+def test_circle_polygon_touching_to_rounding_and_separating_too_slowly_recloses_at_the_peak():
+    """A circle a rounding error inside an edge or a corner, leaving at 1e-9 but pushed back by its
+    acceleration, never gets clear: the contact is its gap's peak, not "never" (the squeeze overlap
+    of tools/repro/repro_squeeze_overlap.py: the circle then drifted into the polygon unseen)."""
+    rows = outline_rows([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)])
+    inside = np.nextafter(0.75, 0.0)  # 1.1e-16 into the top edge
+    t, feature = circle_polygon(0.0, inside, 0.0, 1e-9, 0.0, -9.81, 0.25, rows, 0, 4, 1.0)
+    assert feature == 2
+    assert t == pytest.approx(1e-9 / 9.81, rel=1e-9)
+    # The traced corner: gap -6.5e-19 (squared units), opening at 3.1e-10, pressed back.
+    s = 1.0 / math.sqrt(2.0)
+    for nudge in (-1, 0, 1):
+        c = 0.5 + 0.25 * s
+        for _ in range(abs(nudge)):
+            c = np.nextafter(c, c + nudge)
+        t, feature = circle_polygon(c, c, 1e-9 * s, 1e-9 * s, -9.81 * s, -9.81 * s, 0.25, rows, 0, 4, 1.0)
+        gap = float(Decimal(2).sqrt() * (Decimal(c) - Decimal("0.5")) - Decimal("0.25"))  # exact to 1e-28
+        # The kernel's squared distance rounds by ~1e-17 (units of 0.25^2), so its gap may be off by 1e-16.
+        closes = (1e-9 + math.sqrt(max(1e-18 + 2.0 * 9.81 * (gap + 1e-16), 0.0))) / 9.81
+        assert feature == -3
+        assert 0.0 < t <= closes * (1.0 + 1e-12)
+    # A circle touching and leaving fast enough to get clear is not in contact at the peak.
+    assert circle_polygon(0.0, inside, 0.0, 1.0, 0.0, 0.0, 0.25, rows, 0, 4, 1.0)[0] == INF
 
 
 # ------------------------------------------------------------------ polygon-polygon

@@ -88,6 +88,35 @@ def _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny):
 
 
 @njit(cache=True)
+def _reclosing(px, py, vx, vy, ax, ay, radius, outline, start, feature, horizon):
+    """When a circle touching ``feature`` (to rounding) and separating from it touches it again.
+
+    A gap that is zero to rounding, opening too slowly, and pressed shut by the
+    acceleration never becomes positive: it peaks and closes at once. The
+    feature's own gap function (``first_descent`` with ``immediate``) returns
+    that peak; inf when the gap opens for real or does not close within ``horizon``.
+    """
+    if feature >= 0:
+        row = start + feature
+        nx = outline[row, 2]
+        ny = outline[row, 3]
+        s0 = nx * (px - outline[row, 0]) + ny * (py - outline[row, 1]) - radius
+        return first_descent_quadratic(s0, nx * vx + ny * vy, 0.5 * (nx * ax + ny * ay), horizon, True)
+    row = start - feature - 1
+    ox = px - outline[row, 0]
+    oy = py - outline[row, 1]
+    return first_descent(
+        ox * ox + oy * oy - radius * radius,
+        2.0 * (ox * vx + oy * vy),
+        vx * vx + vy * vy + ox * ax + oy * ay,
+        vx * ax + vy * ay,
+        0.25 * (ax * ax + ay * ay),
+        horizon,
+        True,
+    )
+
+
+@njit(cache=True)
 def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, still=0.0):
     """First contact of a circle and a convex polygon within ``[0, horizon]``.
 
@@ -97,6 +126,9 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
     separating slower than ``still`` (``pge.core.predict.still_speed``) are at
     rest relative to each other: a contact now only if pressed together.
     """
+    best_t = horizon
+    best_feature = 0
+    found = False
     # Overlap at t = 0 is judged for the shape as a whole, by its nearest feature.
     max_s = -_INF
     for k in range(n):
@@ -111,9 +143,12 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
             closing = 0.0  # neither approaching nor separating, to rounding
         if gap <= 0.0 and (closing < 0.0 or (closing == 0.0 and _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny))):
             return 0.0, feature
-    best_t = horizon
-    best_feature = 0
-    found = False
+        if gap <= 0.0 and closing > 0.0:
+            reclose = _reclosing(px, py, vx, vy, ax, ay, radius, outline, start, feature, horizon)
+            if 0.0 < reclose < _INF:
+                best_t = reclose
+                best_feature = feature
+                found = True
     hax = 0.5 * ax
     hay = 0.5 * ay
     for k in range(n):

@@ -150,10 +150,15 @@ def _reach(outline, start, n):
 
 @njit(cache=True)
 def _signed_distance(wx, wy, geo, row0, n):
-    """Signed distance of ``w`` to the polygon in ``geo`` rows ``row0 ..``: ``(sd, x, y, ux, uy)``.
+    """Signed distance of ``w`` to the polygon in ``geo`` rows ``row0 ..``: ``(sd, x, y, ux, uy, slack)``.
 
     ``(x, y)`` is the nearest boundary point and ``u`` the unit gradient of the
     distance (from the polygon towards ``w``; the face normal inside).
+    ``slack >= 0`` when the distance is a face's plane distance (``w`` inside,
+    or beside a face rather than round a corner): ``u`` is then that face's
+    normal, ``sd = u . (w - vertex)``, and ``slack`` is how far ``w``'s foot
+    on the face's line lies within the face (0 at or beyond an end). ``slack =
+    -1`` round a corner.
     """
     smax = -_INF
     kmax = 0
@@ -165,8 +170,11 @@ def _signed_distance(wx, wy, geo, row0, n):
             kmax = k
     if smax <= 0.0:
         r = row0 + kmax
-        return smax, wx - smax * geo[r, 2], wy - smax * geo[r, 3], geo[r, 2], geo[r, 3]
+        along = -geo[r, 3] * (wx - geo[r, 0]) + geo[r, 2] * (wy - geo[r, 1])
+        slack = max(min(along, geo[r, 4] - along), 0.0)
+        return smax, wx - smax * geo[r, 2], wy - smax * geo[r, 3], geo[r, 2], geo[r, 3], slack
     best = _INF
+    slack = -1.0
     bx = 0.0
     by = 0.0
     bux = 1.0
@@ -184,27 +192,31 @@ def _signed_distance(wx, wy, geo, row0, n):
         if along <= 0.0:
             dist = math.hypot(ox, oy)
             if dist < best:
-                best, bx, by, bux, buy = dist, geo[r, 0], geo[r, 1], ox / dist, oy / dist
+                best, bx, by, bux, buy, slack = dist, geo[r, 0], geo[r, 1], ox / dist, oy / dist, -1.0
         elif along >= geo[r, 4]:
             r1 = row0 + (k + 1) % n
             ox1 = wx - geo[r1, 0]
             oy1 = wy - geo[r1, 1]
             dist = math.hypot(ox1, oy1)
             if dist < best:
-                best, bx, by, bux, buy = dist, geo[r1, 0], geo[r1, 1], ox1 / dist, oy1 / dist
+                best, bx, by, bux, buy, slack = dist, geo[r1, 0], geo[r1, 1], ox1 / dist, oy1 / dist, -1.0
         elif s < best:
-            best, bx, by, bux, buy = s, wx - s * nx, wy - s * ny, nx, ny
-    return best, bx, by, bux, buy
+            best, bx, by, bux, buy, slack = s, wx - s * nx, wy - s * ny, nx, ny, min(along, geo[r, 4] - along)
+    return best, bx, by, bux, buy, slack
 
 
 @njit(cache=True)
-def _evaluate(t, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate):
+def _evaluate(t, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate, facing, slack):
     """Place both shapes at ``t`` and fill every feature's value and rate.
 
     ``motion = (dx, dy, dvx, dvy, dax, day)``, ``turn = (theta, omega)``. ``geo``
     rows ``0 .. n_a-1`` hold a (none for a circle), the next ``n_b`` rows b.
     Features ``0 .. n_a-1`` (one, the centre, for a circle) are a's points
-    against b, the rest b's vertices against a. Returns ``D(t)`` and ``D'(t)``.
+    against b, the rest b's vertices against a. When feature ``f``'s value is
+    a face's plane distance, ``facing[f]`` is the centroids' relative
+    acceleration (``da``, or ``-da`` for b's vertices) along the face's normal
+    and ``slack[f] >= 0`` as in ``_signed_distance``; round a corner
+    ``facing[f]`` is NaN and ``slack[f] = -1``. Returns ``D(t)`` and ``D'(t)``.
     """
     dx, dy, dvx, dvy, dax, day = motion
     theta_a, omega_a = turn_a
@@ -218,22 +230,25 @@ def _evaluate(t, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, ra
         _place(outline, start_a, n_a, theta_a + omega_a * t, geo, 0)
     _place(outline, start_b, n_b, theta_b + omega_b * t, geo, rows_a)
     if circle:
-        sd, x, y, ux, uy = _signed_distance(ox, oy, geo, 0, n_b)
+        sd, x, y, ux, uy, slack[0] = _signed_distance(ox, oy, geo, 0, n_b)
         value[0] = sd - radius
+        facing[0] = ux * dax + uy * day if slack[0] >= 0.0 else np.nan
         # relative velocity of the centre and of b's material point at x
         rate[0] = ux * (vx + omega_b * y) + uy * (vy - omega_b * x)
         return ox, oy, vx, vy
     for i in range(n_a):
         px = geo[i, 0]
         py = geo[i, 1]
-        sd, x, y, ux, uy = _signed_distance(ox + px, oy + py, geo, n_a, n_b)
+        sd, x, y, ux, uy, slack[i] = _signed_distance(ox + px, oy + py, geo, n_a, n_b)
         value[i] = sd
+        facing[i] = ux * dax + uy * day if slack[i] >= 0.0 else np.nan
         rate[i] = ux * (vx - omega_a * py + omega_b * y) + uy * (vy + omega_a * px - omega_b * x)
     for j in range(n_b):
         qx = geo[n_a + j, 0]
         qy = geo[n_a + j, 1]
-        sd, x, y, ux, uy = _signed_distance(qx - ox, qy - oy, geo, 0, n_a)
+        sd, x, y, ux, uy, slack[n_a + j] = _signed_distance(qx - ox, qy - oy, geo, 0, n_a)
         value[n_a + j] = sd
+        facing[n_a + j] = -(ux * dax + uy * day) if slack[n_a + j] >= 0.0 else np.nan
         rate[n_a + j] = ux * (-omega_b * qy - vx + omega_a * y) + uy * (omega_b * qx - vy - omega_a * x)
     return ox, oy, vx, vy
 
@@ -441,6 +456,24 @@ def _rounding(scale, angle_a, angle_b, motion, t):
 
 
 @njit(cache=True)
+def _band_step(value, rate, curvature, eps, speed, accel, h, bounded):
+    """Step for a feature touching within ``eps`` at the end of a contact: it may open
+    (and must not close again unseen) or, pressed or turned in, sink; step no further
+    than it could reach ``-eps``. ``curvature`` bounds the gap's bend over the window."""
+    deeper = value + eps
+    if value < 0.0:
+        s = lipschitz_step(-value, speed, accel) + excursion_step(0.0, curvature, eps)
+    else:
+        s = excursion_step(rate, curvature, eps)
+    if deeper > 0.0:
+        sink = lipschitz_step(deeper, speed, accel)
+        if bounded:
+            sink = max(sink, min(h, curvature_step(deeper, rate, curvature)))
+        s = min(s, sink)
+    return s
+
+
+@njit(cache=True)
 def rotating_search(
     dx,
     dy,
@@ -483,6 +516,8 @@ def rotating_search(
     geo = np.empty((rows_a + n_b, 5))
     value = np.empty(count)
     rate = np.empty(count)
+    facing = np.empty(count)
+    slack = np.empty(count)
     band = np.zeros(count, np.bool_)
     reach_a = 0.0 if circle else _reach(outline, start_a, n_a)
     reach_b = _reach(outline, start_b, n_b)
@@ -500,7 +535,7 @@ def rotating_search(
     turn_b = (theta_b, omega_b)
 
     ox, oy, vx, vy = _evaluate(
-        0.0, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate
+        0.0, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate, facing, slack
     )
     eps = _TOUCH * _rounding(scale, theta_a, theta_b, motion, 0.0)
     gap = _INF
@@ -590,40 +625,42 @@ def rotating_search(
         h = min(window, horizon - lo)
         bounded = h < _INF
         reach = _INF
-        base_a = _INF
-        base_b = _INF
+        rest_a = _INF
+        rest_b = _INF
         if bounded:
             fastest = speed + accel * h
             reach = fastest + spin  # bound on every |g'| over the window
-            base_a = accel + swing_a + 2.0 * spin_b * (fastest + spin_a * reach_a) + spin_b * spin_b * reach_b
-            base_b = accel + swing_b + 2.0 * spin_a * (fastest + spin_b * reach_b) + spin_a * spin_a * reach_a
+            rest_a = swing_a + 2.0 * spin_b * (fastest + spin_a * reach_a) + spin_b * spin_b * reach_b
+            rest_b = swing_b + 2.0 * spin_a * (fastest + spin_b * reach_b) + spin_a * spin_a * reach_a
         step = _INF
         for f in range(count):
+            curvature = _INF
+            flat = _INF
+            turn = 0.0
+            widest = 0.0
             if bounded:
                 widest = max(value[f] + radius, 0.0) + reach * h
-                if f < front:
-                    curvature = base_a + spin_b * spin_b * widest
-                else:
-                    curvature = base_b + spin_a * spin_a * widest
-            else:
-                curvature = _INF
+                turn = spin_b if f < front else spin_a  # the spin of the body f is measured against
+                rest = rest_a if f < front else rest_b
+                curvature = accel + rest + turn * turn * widest
+                flat = curvature
+                if slack[f] >= 0.0:
+                    # Beside a face: the face's plane distance is a lower bound of the gap for
+                    # all time, bent only by the acceleration along its normal (which turns by
+                    # at most turn * h over the window) and by the spins.
+                    flat = rest + turn * turn * widest + min(accel, max(0.0, accel * turn * h - facing[f]))
             if band[f]:
-                # A touching feature may open (and must not close again unseen) or, pressed
-                # or turned in, sink: step no further than it could reach -eps.
-                deeper = value[f] + eps
-                if value[f] < 0.0:
-                    s = lipschitz_step(-value[f], speed + spin, accel) + excursion_step(0.0, curvature, eps)
-                else:
-                    s = excursion_step(rate[f], curvature, eps)
-                if deeper > 0.0:
-                    sink = lipschitz_step(deeper, speed + spin, accel)
-                    if bounded:
-                        sink = max(sink, min(h, curvature_step(deeper, rate[f], curvature)))
-                    s = min(s, sink)
+                s = _band_step(value[f], rate[f], curvature, eps, speed + spin, accel, h, bounded)
+                if flat < curvature:
+                    # While the point stays beside the face, the gap near zero is the plane
+                    # distance itself, so its milder bend bounds the excursion too.
+                    beside = slack[f] / (reach + turn * widest)
+                    milder = _band_step(value[f], rate[f], flat, eps, speed + spin, accel, h, bounded)
+                    s = max(s, min(beside, h, milder))
             else:
                 s = lipschitz_step(value[f] - margin, speed + spin, accel)
                 if bounded:
-                    s = max(s, min(h, curvature_step(value[f] - margin, rate[f], curvature)))
+                    s = max(s, min(h, curvature_step(value[f] - margin, rate[f], flat)))
             step = min(step, s)
         if step == _INF:
             return _INF, 0, iterations
@@ -637,7 +674,7 @@ def rotating_search(
             trial = newton_trial(lo, gap, rate[nearest], following, widen, tolerance)
             if following < trial < hi and trial <= horizon:
                 _evaluate(
-                    trial, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate
+                    trial, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate, facing, slack
                 )
                 closed = False
                 for f in range(count):
@@ -651,7 +688,7 @@ def rotating_search(
         lo = following
         window = 4.0 * step
         ox, oy, vx, vy = _evaluate(
-            lo, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate
+            lo, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate, facing, slack
         )
     if not found:
         return lo, CHECKPOINT, iterations
