@@ -576,3 +576,32 @@ def test_energy_never_increases_across_a_settle(make, duration):
         assert value <= previous + 1e-12 * scale
         previous = value
     assert any(b.resting_on is not None for b in world.bodies if not b.is_fixed)
+
+
+# ------------------------------------------------------------------ wedged between two sliding faces
+
+#: two polygons sliding apart on a frictionless floor (seed 3 of the random rotating scenes, inelastic,
+#: under gravity, at t = 2.0967) and a spinning circle dropping into the V between their tilted faces.
+V_LEFT = [(0.559764773, 0.085430261), (0.525891043, 0.065559464), (0.54310438, 0.0), (0.58344796, 0.0),
+          (0.603155705, 0.030400699), (0.590825229, 0.060750892)]
+V_RIGHT = [(0.804262837, 0.018326242), (0.80510206, 0.065118083), (0.761276702, 0.07856254),
+           (0.722125242, 0.065230135), (0.714674307, 0.034034038), (0.736623803, 0.0), (0.775273696, 0.0)]
+
+
+def test_circle_wedged_between_two_sliding_faces_does_not_swap_supports_for_ever():
+    """Resting on either face presses the circle into the other, and a side hit releases a rider of a
+    face that moves along its normal: it swapped supports at one instant until the event-storm error
+    (a million collisions at t = 0.0098). A rider wedged against a body that cannot give way (or on
+    such a loose support, against any body) does not rest; it bounces under the pivot rule."""
+    world = World(gravity=(0.0, -G))
+    world.add_box(-0.5, -0.1, 2.0, 0.1, fixed=True, elasticity=0.5)
+    left = world.add_polygon(V_LEFT, mass=1.86, elasticity=0.88, velocity=(0.0757, 0.0))
+    right = world.add_polygon(V_RIGHT, mass=1.79, elasticity=0.83, velocity=(0.0806, 0.0))
+    ball = world.add_circle((0.6574, 0.0629), 0.0623, mass=0.94, elasticity=0.26, velocity=(0.0783, -0.0119),
+                            angular_velocity=11.7)
+    for k in range(1, 101):
+        world.run_until(0.01 * k)
+        for body, other, depth in world.overlaps():
+            assert depth <= CLOSE * (body.bounding_radius + other.bounding_radius), (body, other, depth)
+    assert world.stats["events"] < 1000
+    assert ball.position[1] > 0.0 and left.resting_on is not None and right.resting_on is not None

@@ -31,7 +31,7 @@ from numba import njit
 from pge.core import layout as L
 from pge.core.grid import gather
 from pge.core.motion import advance, orient, state_at
-from pge.core.overlap import overlap_depth
+from pge.core.overlap import nearest_normal, overlap_depth
 from pge.core.queue import push
 from pge.core.response import apply_impulse, contact_response
 from pge.numerics.roots import first_descent_quadratic
@@ -222,6 +222,37 @@ def _pushes_into_neighbour(S, r, s):
 
 
 @njit(cache=True)
+def _wedged(S, r, s, ax, ay, height, loose, t):
+    """Whether rider ``r``, resting on ``s`` with acceleration ``(ax, ay)``, would be pressed
+    into another body it touches (within ``height``) without leaving it faster than a bounce
+    of that height: wedged between two bodies, it has no single support to rest on.
+
+    Only a neighbour that cannot give way (fixed, resting or asleep) wedges a rider, unless
+    the rest is ``loose`` (the support's face moves along its normal, so that any push from
+    the side releases the rider again); a free body leaning on a rider is its own business."""
+    F = S[0]
+    I = S[1]
+    scratch = S[15]
+    n = gather(S, r)
+    _, _, rvx, rvy = state_at(F, r, t)
+    for k in range(n):
+        j = scratch[k]
+        if j == s or not (loose or grounded(I, j)):
+            continue
+        nx, ny, depth = nearest_normal(S, r, j)
+        if depth < -height:
+            continue
+        an = (ax - F[j, L.AX]) * nx + (ay - F[j, L.AY]) * ny
+        if not an < 0.0:
+            continue
+        _, _, jvx, jvy = state_at(F, j, t)
+        vn = (rvx - jvx) * nx + (rvy - jvy) * ny
+        if vn <= 0.0 or vn * vn <= -2.0 * an * height:
+            return True
+    return False
+
+
+@njit(cache=True)
 def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
     """Let rider ``r`` come to rest on ``s`` after a bounce, if it qualifies.
 
@@ -255,6 +286,12 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
         return False, count
     height = P[L.REST_HEIGHT] * F[r, L.REACH]
     if vn > 0.0 and vn * vn > -2.0 * an * height:
+        return False, count
+    loose = abs(F[s, L.VX] * mx + F[s, L.VY] * my) > 1e-12 * math.hypot(F[s, L.VX], F[s, L.VY])
+    if _wedged(S, r, s, F[r, L.FREE_AX] - an * mx, F[r, L.FREE_AY] - an * my, height, loose, t):
+        # Resting here would press it into a neighbour, and resting there into this one: a
+        # body wedged between two would swap supports for ever at one instant. It bounces
+        # under the pivot rule instead.
         return False, count
     if I[r, L.KIND] != 0 and F[r, L.OMEGA] != 0.0:
         if not _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):

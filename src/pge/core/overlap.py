@@ -51,6 +51,42 @@ def overlap_depth(S, i, j):
 
 
 @njit(cache=True)
+def nearest_normal(S, i, j):
+    """``(nx, ny, depth)`` of bodies ``i`` and ``j`` at ``P[TIME]``: the unit normal of their
+    nearest features, from ``j`` towards ``i``, and the overlap depth as ``overlap_depth``."""
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    P = S[3]
+    orient(F, I, OL, S[18], i, P[L.TIME])
+    orient(F, I, OL, S[18], j, P[L.TIME])
+    xi, yi, _, _ = state_at(F, i, P[L.TIME])
+    xj, yj, _, _ = state_at(F, j, P[L.TIME])
+    dx = xi - xj
+    dy = yi - yj
+    if I[i, L.KIND] == CIRCLE and I[j, L.KIND] == CIRCLE:
+        d = math.hypot(dx, dy)
+        if d == 0.0:
+            return 1.0, 0.0, F[i, L.RADIUS] + F[j, L.RADIUS]
+        return dx / d, dy / d, F[i, L.RADIUS] + F[j, L.RADIUS] - d
+    if I[i, L.KIND] == CIRCLE:
+        _, nx, ny, gap = closest_feature(dx, dy, F[i, L.RADIUS], OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N])
+        return nx, ny, -gap
+    if I[j, L.KIND] == CIRCLE:
+        _, nx, ny, gap = closest_feature(-dx, -dy, F[j, L.RADIUS], OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N])
+        return -nx, -ny, -gap
+    faces = minkowski_faces(OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], I[j, L.OUTLINE_START], I[j, L.OUTLINE_N])
+    best = -_INF
+    best_f = 0
+    for f in range(faces.shape[0]):
+        s = faces[f, 0] * dx + faces[f, 1] * dy + faces[f, 2]
+        if s > best:
+            best = s
+            best_f = f
+    return faces[best_f, 0], faces[best_f, 1], -best
+
+
+@njit(cache=True)
 def find_overlap(S, ids, tolerance):
     """First pair ``(i, j, depth)`` among ``ids`` and their neighbours overlapping by more
     than ``tolerance`` times their bounding radii; ``(-1, -1, 0.0)`` when there is none."""
