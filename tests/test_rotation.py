@@ -878,3 +878,24 @@ def test_same_rotating_scene_gives_a_bit_identical_event_trace(seed):
     assert sum(1 for r in first[0] if r[0] == "c") > 50  # a trace worth comparing
     assert first == second
     assert first == third
+
+
+@pytest.mark.parametrize("tilt_degrees", [30.0, -50.0, 5.0])
+def test_box_set_down_still_on_a_corner_tips_over_and_lies_flat(tilt_degrees):
+    """A box set down at rest on one corner (no spin, no speed) with its centroid beside the corner
+    tips over: it is not allowed to rest balanced on the corner (it did, for ever, when it came to
+    rest without turning), and ends resting flat on a face."""
+    world = World(gravity=(0.0, -G), elasticity=0.5, bounds=(-1.0, -1.0, 3.0, 3.0))
+    floor = world.add_box(-1.0, -0.25, 6.0, 0.25, fixed=True, friction=0.8, name="floor")
+    tilt = math.radians(tilt_degrees)
+    c, s = math.cos(tilt), math.sin(tilt)
+    corners = [(c * x - s * y, s * x + c * y) for x in (-BOX_WIDTH / 2, BOX_WIDTH / 2) for y in (-BOX_HEIGHT / 2, BOX_HEIGHT / 2)]
+    low = min(y for _, y in corners)
+    box = world.add_box(1.0 - BOX_WIDTH / 2, -low - BOX_HEIGHT / 2 - 1e-12, BOX_WIDTH, BOX_HEIGHT, mass=1.0,
+                        angle=tilt, friction=0.8)
+    world.run_until(3.0)
+    assert box.resting_on is floor and box.angular_velocity == 0.0
+    quarter = box.angle / (math.pi / 2)
+    assert abs(quarter - round(quarter)) * (math.pi / 2) < 1e-9, box.angle
+    ys = sorted(y for _, y in box.vertices)
+    assert -1e-9 <= ys[0] and ys[1] <= 1e-9

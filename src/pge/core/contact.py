@@ -198,6 +198,26 @@ def _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
 
 
 @njit(cache=True)
+def _on_one_corner(S, r, mx, my):
+    """Whether polygon ``r`` meets a support below it (unit normal ``m`` from the support
+    towards ``r``) with a single corner rather than an edge."""
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    start = I[r, L.OUTLINE_START]
+    n = I[r, L.OUTLINE_N]
+    lowest = _INF
+    for k in range(start, start + n):
+        lowest = min(lowest, OL[k, 0] * mx + OL[k, 1] * my)
+    tolerance = 1e-9 * F[r, L.REACH]
+    count = 0
+    for k in range(start, start + n):
+        if OL[k, 0] * mx + OL[k, 1] * my <= lowest + tolerance:
+            count += 1
+    return count == 1
+
+
+@njit(cache=True)
 def _pushes_into_neighbour(S, r, s):
     """Whether ``r``, just turned by hand, overlaps a body other than its support ``s``.
 
@@ -293,7 +313,9 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
         # body wedged between two would swap supports for ever at one instant. It bounces
         # under the pivot rule instead.
         return False, count
-    if I[r, L.KIND] != 0 and F[r, L.OMEGA] != 0.0:
+    if I[r, L.KIND] != 0 and (F[r, L.OMEGA] != 0.0 or (owner == s and _on_one_corner(S, r, mx, my))):
+        # A polygon on one corner rests only once turned flat (a still one too: balanced on a
+        # corner it would never tip).
         if not _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
             return False, count
     if owner < 0:
