@@ -38,6 +38,8 @@ from pge.numerics.roots import first_descent_quadratic
 
 _INF = math.inf
 _BALANCE_TOLERANCE = 1e-12
+#: normal speeds within this many units of roundoff of the speeds involved are no motion
+_STILL_ULPS = 64.0 * 2.0**-52
 #: a body pressed onto a curved feature slides along the tangent for this many bounding
 #: radii before it is released and the contact is looked at afresh.
 CURVED_STEP = 0.02
@@ -244,8 +246,8 @@ def _pushes_into_neighbour(S, r, s):
 @njit(cache=True)
 def _wedged(S, r, s, ax, ay, height, loose, t):
     """Whether rider ``r``, resting on ``s`` with acceleration ``(ax, ay)``, would be pressed
-    into another body it touches (within ``height``) without leaving it faster than a bounce
-    of that height: wedged between two bodies, it has no single support to rest on.
+    into another body it touches (within ``height``) and is not leaving (to rounding):
+    wedged between two bodies, it has no single support to rest on.
 
     Only a neighbour that cannot give way (fixed, resting or asleep) wedges a rider, unless
     the rest is ``loose`` (the support's face moves along its normal, so that any push from
@@ -267,8 +269,8 @@ def _wedged(S, r, s, ax, ay, height, loose, t):
             continue
         _, _, jvx, jvy = state_at(F, j, t)
         vn = (rvx - jvx) * nx + (rvy - jvy) * ny
-        if vn <= 0.0 or vn * vn <= -2.0 * an * height:
-            return True
+        if vn <= _STILL_ULPS * (math.hypot(rvx, rvy) + math.hypot(jvx, jvy)):
+            return True  # not leaving it (a neighbour sliding away is stopped by its friction)
     return False
 
 
