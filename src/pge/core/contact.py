@@ -189,7 +189,7 @@ def _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
     F[r, L.Y] = new_y
     F[r, L.ANGLE] = old_angle + delta
     orient(F, I, OL, S[18], r, t)
-    if _pushes_into_neighbour(S, r, s):
+    if pushes_into_neighbour(S, r, s):
         F[r, L.X] = old_x
         F[r, L.Y] = old_y
         F[r, L.ANGLE] = old_angle
@@ -220,7 +220,7 @@ def _on_one_corner(S, r, mx, my):
 
 
 @njit(cache=True)
-def _pushes_into_neighbour(S, r, s):
+def pushes_into_neighbour(S, r, s):
     """Whether ``r``, just turned by hand, overlaps a body other than its support ``s``.
 
     The turn moves ``r``'s corners by up to its bounding radius, so the search

@@ -100,6 +100,7 @@ STAT_NAMES = (
     "stops",
     "sleeps",
     "wakes",
+    "tips",
 )
 (
     S_EVENTS,
@@ -123,8 +124,9 @@ STAT_NAMES = (
     S_STOPS,
     S_SLEEPS,
     S_WAKES,
-) = range(21)
-NSTATS = 21
+    S_TIPS,
+) = range(22)
+NSTATS = 22
 
 # ---- event kinds (high bits of the heap key; equal times pop in this order) --
 COLLISION, CONTACT_EVENT, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3, 4

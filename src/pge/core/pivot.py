@@ -14,8 +14,10 @@ import numpy as np
 from numba import njit
 
 from pge.core import layout as L
-from pge.core.contact import combine, relative_tangential
+from pge.core.contact import combine, pushes_into_neighbour, relative_tangential
 from pge.core.impulse import contact_impulse
+from pge.core.motion import orient
+from pge.core.overlap import overlap_depth
 from pge.core.predict import still_speed
 from pge.core.response import apply_impulse, contact_response
 from pge.numerics.linalg import solve_spd
@@ -218,8 +220,88 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
         free_a = a if not keep_a else -1
         free_b = b if not keep_b else -1
         if not lift_from_motion(F, free_a, free_b, px, py, nx, ny, budget, SLOWEST * target):
-            S[13][L.S_UNPAID_LIFTS] += 1
+            if tip_to_pay(S, a, b, owner, px, py, pre):
+                S[13][L.S_TIPS] += 1
+            else:
+                S[13][L.S_UNPAID_LIFTS] += 1
     return jn, kick
+
+
+#: a turn that pays for a lift may be no larger than this (radians)
+_LARGEST_TIP = 0.01
+#: a turn may not push the body into another by more than this many bounding radii
+_TIP_OVERLAP = 1e-12
+
+
+@njit(cache=True)
+def tip_to_pay(S, a, b, owner, px, py, pre):
+    """Pay for a lift the pair's motion cannot pay for by tipping the body that stands on a
+    corner: turn it about that corner ``p`` (which stays where it is) in the direction its
+    weight turns it, just far enough that the work its acceleration does equals the kinetic
+    energy the lift gave (``pre``: velocities and spins before it). A polygon standing on a
+    corner in a pile that cannot hold it tips or slides under contact forces acting over time,
+    which impulses cannot do; the lifts imitate that motion and the turn is the part of it
+    that releases the energy they cost. Refused (False, nothing changed) for a curved
+    contact, a circle, a fixed or resting body, a turn larger than ``_LARGEST_TIP`` or one
+    that would push the body into a neighbour."""
+    F = S[0]
+    I = S[1]
+    if owner < 0:
+        return False
+    x = b if owner == a else a  # its corner touches the other's face
+    other = owner
+    if I[x, L.KIND] == CIRCLE or I[x, L.FIXED] != 0 or I[x, L.SUPPORT] >= 0 or not F[x, L.INV_MASS] > 0.0:
+        return False
+    va_x, va_y, wa, vb_x, vb_y, wb = pre
+    gain = 0.0
+    for y in (a, b):
+        if F[y, L.INV_MASS] > 0.0:
+            gain += _kinetic(F, y, F[y, L.VX], F[y, L.VY], F[y, L.OMEGA])
+            if y == a:
+                gain -= _kinetic(F, y, va_x, va_y, wa)
+            else:
+                gain -= _kinetic(F, y, vb_x, vb_y, wb)
+    if not gain > 0.0:
+        return True
+    mass = 1.0 / F[x, L.INV_MASS]
+    ax = F[x, L.FREE_AX]
+    ay = F[x, L.FREE_AY]
+    rx = F[x, L.X] - px
+    ry = F[x, L.Y] - py
+    torque = rx * ay - ry * ax  # the work of a turn by d is about mass * d * torque
+    if torque == 0.0:
+        return False
+    delta = gain / (mass * torque)
+    work = 0.0
+    c = 1.0
+    s = 0.0
+    for _ in range(8):
+        if not abs(delta) <= _LARGEST_TIP:
+            return False
+        c = math.cos(delta)
+        s = math.sin(delta)
+        work = mass * (ax * (c * rx - s * ry - rx) + ay * (s * rx + c * ry - ry))
+        if work >= gain:
+            break
+        delta *= (gain / work if work > 0.0 else 2.0) * (1.0 + 1e-9)
+    if not work >= gain:
+        return False
+    old_x = F[x, L.X]
+    old_y = F[x, L.Y]
+    old_angle = F[x, L.ANGLE]
+    t = F[x, L.T0]
+    F[x, L.X] = px + c * rx - s * ry
+    F[x, L.Y] = py + s * rx + c * ry
+    F[x, L.ANGLE] = old_angle + delta
+    orient(F, I, S[2], S[18], x, t)
+    reach = F[x, L.REACH] + F[other, L.REACH]
+    if pushes_into_neighbour(S, x, other) or overlap_depth(S, x, other) > _TIP_OVERLAP * reach:
+        F[x, L.X] = old_x
+        F[x, L.Y] = old_y
+        F[x, L.ANGLE] = old_angle
+        orient(F, I, S[2], S[18], x, t)
+        return False
+    return True
 
 
 @njit(cache=True)
