@@ -27,27 +27,7 @@ CIRCLE = 0
 def overlap_depth(S, i, j):
     """Overlap depth of bodies ``i`` and ``j`` at ``P[TIME]`` (negative: apart; for two
     polygons a lower bound on the distance)."""
-    F = S[0]
-    I = S[1]
-    OL = S[2]
-    P = S[3]
-    orient(F, I, OL, S[18], i, P[L.TIME])
-    orient(F, I, OL, S[18], j, P[L.TIME])
-    xi, yi, _, _ = state_at(F, i, P[L.TIME])
-    xj, yj, _, _ = state_at(F, j, P[L.TIME])
-    if I[i, L.KIND] == CIRCLE and I[j, L.KIND] == CIRCLE:
-        return F[i, L.RADIUS] + F[j, L.RADIUS] - math.hypot(xi - xj, yi - yj)
-    if I[i, L.KIND] == CIRCLE:
-        return -closest_feature(xi - xj, yi - yj, F[i, L.RADIUS], OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N])[3]
-    if I[j, L.KIND] == CIRCLE:
-        return -closest_feature(xj - xi, yj - yi, F[j, L.RADIUS], OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N])[3]
-    faces = minkowski_faces(OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], I[j, L.OUTLINE_START], I[j, L.OUTLINE_N])
-    best = -_INF
-    for f in range(faces.shape[0]):
-        s = faces[f, 0] * (xi - xj) + faces[f, 1] * (yi - yj) + faces[f, 2]
-        if s > best:
-            best = s
-    return -best
+    return nearest_normal(S, i, j)[2]
 
 
 @njit(cache=True)
