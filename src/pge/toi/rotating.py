@@ -465,6 +465,8 @@ def _band_step(value, rate, curvature, eps, speed, accel, h, bounded):
         s = lipschitz_step(-value, speed, accel) + excursion_step(0.0, curvature, eps)
     else:
         s = excursion_step(rate, curvature, eps)
+    if bounded:
+        s = min(s, h)  # the bend is bounded over the window only
     if deeper > 0.0:
         sink = lipschitz_step(deeper, speed, accel)
         if bounded:
@@ -656,7 +658,7 @@ def rotating_search(
                     # distance itself, so its milder bend bounds the excursion too.
                     beside = slack[f] / (reach + turn * widest)
                     milder = _band_step(value[f], rate[f], flat, eps, speed + spin, accel, h, bounded)
-                    s = max(s, min(beside, h, milder))
+                    s = max(s, min(beside, milder))
             else:
                 s = lipschitz_step(value[f] - margin, speed + spin, accel)
                 if bounded:
