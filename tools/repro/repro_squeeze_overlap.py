@@ -1,10 +1,13 @@
 """An overlap in a four-body squeeze on a frictionless floor: scene seed 0 of tests/test_rotation.py
 (10 bodies, inelastic, gravity, no friction), run for the full 10 s. At t = 8.10676 circle 10,
-resting on sliding polygon 12, and polygon 13, sliding on the floor, are found 4.5e-9 apart
-inside each other when polygon 8 pushes 13 into the circle; the squeeze then resolves with
-overlaps up to 3.3e-6 of their sizes (the tests allow 1e-9). Measured 2026-11-22 at 22b4600;
-at 4d7ebad the same scene took another path (rounding) and did not overlap. Expected: no overlap
-beyond 1e-9 at any event."""
+resting on sliding polygon 12, and polygon 13, sliding on the floor, were found 4.5e-9 apart
+inside each other when polygon 8 pushed 13 into the circle; the squeeze then resolved with
+overlaps up to 3.3e-6 of their sizes (the tests allow 1e-9). Measured 2026-11-22 at 22b4600.
+
+Fixed at b2abef2: the circle was touching 13's corner to rounding, leaving it at 5e-9 m/s and
+pushed back by its rest acceleration; circle_polygon answered "never" for a gap that never becomes
+positive (its feature polynomials ran without the "closes again from the peak" rule). Kept as a
+regression check: it prints ``worst overlap 0`` now (the scene takes another path since then)."""
 import os
 import sys
 
