@@ -640,7 +640,7 @@ def run_overlap_scene(seed, count, elastic, gravity, friction):
     return {"worst": worst, "first_bad": first_bad, "events": events, "end": end, "stats": world.stats}
 
 
-@pytest.mark.xfail(strict=False, reason="KNOWN ENGINE BUG (issue 5 open): no overlap in 48 full 10 s runs and 720 surveyed scenes (2026-11-22), but 2 of 480 scenes of tools/repro/survey.py overlap --seeds 200 260 --count 12 (seeds 212 and 250, inelastic, gravity, frictionless) end in the event-storm error: a circle against a polygon resting on the floor is reported touching and pressed again and again at one instant while collide finds nothing to do (a graze loop); a draw hits one about 1 run in 12")
+@pytest.mark.xfail(strict=False, reason="KNOWN ENGINE BUG (issue 5 open): no overlap in 48 full 10 s runs and 720 surveyed scenes (2026-11-22), but 2 of 480 scenes of tools/repro/survey.py overlap --seeds 200 260 --count 12 (seeds 212 and 250, inelastic, gravity, frictionless) end in the event-storm error: circles resting on the two faces of one sliding polygon release each other at one instant, each rest changing the polygon's velocity by an ulp (tools/repro/repro_rider_pingpong.py); a draw hits one about 1 run in 12")
 @SCENE_SETTINGS
 @given(
     seed=st.integers(0, 2**32 - 1),
