@@ -32,14 +32,13 @@ from pge.core import layout as L
 from pge.core.grid import gather
 from pge.core.motion import advance, orient, state_at
 from pge.core.overlap import nearest_normal, overlap_depth
+from pge.core.predict import STILL_ULPS
 from pge.core.queue import push
 from pge.core.response import apply_impulse, contact_response
 from pge.numerics.roots import first_descent_quadratic
 
 _INF = math.inf
 _BALANCE_TOLERANCE = 1e-12
-#: normal speeds within this many units of roundoff of the speeds involved are no motion
-_STILL_ULPS = 64.0 * 2.0**-52
 #: a body pressed onto a curved feature slides along the tangent for this many bounding
 #: radii before it is released and the contact is looked at afresh.
 CURVED_STEP = 0.02
@@ -182,20 +181,47 @@ def _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
     # than the spin it stops could pay for (else the body tips the other way).
     if -an * ((new_x - cx) * mx + (new_y - cy) * my) > 0.5 * omega * omega * inertia:
         return False
-    old_x = F[r, L.X]
-    old_y = F[r, L.Y]
-    old_angle = F[r, L.ANGLE]
-    F[r, L.X] = new_x
-    F[r, L.Y] = new_y
-    F[r, L.ANGLE] = old_angle + delta
-    orient(F, I, OL, S[18], r, t)
-    if pushes_into_neighbour(S, r, s):
-        F[r, L.X] = old_x
-        F[r, L.Y] = old_y
-        F[r, L.ANGLE] = old_angle
-        orient(F, I, OL, S[18], r, t)
+    if not turn_if_clear(S, r, qx, qy, c, sn, delta, s, -1.0, t):
         return False
     F[r, L.OMEGA] = 0.0
+    return True
+
+
+@njit(cache=True, inline="always")
+def lowest_along(OL, start, n, mx, my):
+    """The least ``v . m`` over a polygon's outline rows ``start ..`` (its vertices relative to
+    the centroid): how far its lowest corners reach towards a support below (normal ``m``)."""
+    lowest = _INF
+    for k in range(start, start + n):
+        lowest = min(lowest, OL[k, 0] * mx + OL[k, 1] * my)
+    return lowest
+
+
+@njit(cache=True)
+def turn_if_clear(S, x, qx, qy, c, sn, delta, other, other_tolerance, t):
+    """Turn body ``x`` by ``delta`` (``c``, ``sn`` its cosine and sine) about the point ``q``,
+    which stays put, unless that pushes it into a neighbour (other than ``other``) by more
+    than 1e-12 of their sizes or, when ``other_tolerance >= 0``, into ``other`` by more
+    than that many of their sizes; then it is left as it was. Returns whether it turned."""
+    F = S[0]
+    I = S[1]
+    old_x = F[x, L.X]
+    old_y = F[x, L.Y]
+    old_angle = F[x, L.ANGLE]
+    ox = old_x - qx
+    oy = old_y - qy
+    F[x, L.X] = qx + c * ox - sn * oy
+    F[x, L.Y] = qy + sn * ox + c * oy
+    F[x, L.ANGLE] = old_angle + delta
+    orient(F, I, S[2], S[18], x, t)
+    if pushes_into_neighbour(S, x, other) or (
+        other_tolerance >= 0.0 and overlap_depth(S, x, other) > other_tolerance * (F[x, L.REACH] + F[other, L.REACH])
+    ):
+        F[x, L.X] = old_x
+        F[x, L.Y] = old_y
+        F[x, L.ANGLE] = old_angle
+        orient(F, I, S[2], S[18], x, t)
+        return False
     return True
 
 
@@ -208,9 +234,7 @@ def _on_one_corner(S, r, mx, my):
     OL = S[2]
     start = I[r, L.OUTLINE_START]
     n = I[r, L.OUTLINE_N]
-    lowest = _INF
-    for k in range(start, start + n):
-        lowest = min(lowest, OL[k, 0] * mx + OL[k, 1] * my)
+    lowest = lowest_along(OL, start, n, mx, my)
     tolerance = 1e-9 * F[r, L.REACH]
     count = 0
     for k in range(start, start + n):
@@ -269,7 +293,7 @@ def _wedged(S, r, s, ax, ay, height, loose, t):
             continue
         _, _, jvx, jvy = state_at(F, j, t)
         vn = (rvx - jvx) * nx + (rvy - jvy) * ny
-        if vn <= _STILL_ULPS * (math.hypot(rvx, rvy) + math.hypot(jvx, jvy)):
+        if vn <= STILL_ULPS * (math.hypot(rvx, rvy) + math.hypot(jvx, jvy)):
             return True  # not leaving it (a neighbour sliding away is stopped by its friction)
     return False
 

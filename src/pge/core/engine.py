@@ -21,6 +21,7 @@ from numba import njit
 
 from pge.core import layout as L
 from pge.core.contact import (
+    lowest_along,
     combine,
     detach,
     release_riders,
@@ -149,9 +150,7 @@ def _lift_rate(F, I, OL, x, nx, ny, px, py):
     cy = F[x, L.Y]
     start = I[x, L.OUTLINE_START]
     n = I[x, L.OUTLINE_N]
-    lowest = _INF
-    for k in range(start, start + n):
-        lowest = min(lowest, OL[k, 0] * mx + OL[k, 1] * my)
+    lowest = lowest_along(OL, start, n, mx, my)
     tolerance = 1e-9 * F[x, L.REACH]
     u_lo = _INF
     u_hi = -_INF

@@ -14,10 +14,8 @@ import numpy as np
 from numba import njit
 
 from pge.core import layout as L
-from pge.core.contact import combine, pushes_into_neighbour, relative_tangential
+from pge.core.contact import combine, relative_tangential, turn_if_clear
 from pge.core.impulse import contact_impulse
-from pge.core.motion import orient
-from pge.core.overlap import overlap_depth
 from pge.core.predict import still_speed
 from pge.core.response import apply_impulse, contact_response
 from pge.numerics.linalg import solve_spd
@@ -286,22 +284,7 @@ def tip_to_pay(S, a, b, owner, px, py, pre):
         delta *= (gain / work if work > 0.0 else 2.0) * (1.0 + 1e-9)
     if not work >= gain:
         return False
-    old_x = F[x, L.X]
-    old_y = F[x, L.Y]
-    old_angle = F[x, L.ANGLE]
-    t = F[x, L.T0]
-    F[x, L.X] = px + c * rx - s * ry
-    F[x, L.Y] = py + s * rx + c * ry
-    F[x, L.ANGLE] = old_angle + delta
-    orient(F, I, S[2], S[18], x, t)
-    reach = F[x, L.REACH] + F[other, L.REACH]
-    if pushes_into_neighbour(S, x, other) or overlap_depth(S, x, other) > _TIP_OVERLAP * reach:
-        F[x, L.X] = old_x
-        F[x, L.Y] = old_y
-        F[x, L.ANGLE] = old_angle
-        orient(F, I, S[2], S[18], x, t)
-        return False
-    return True
+    return turn_if_clear(S, x, px, py, c, s, delta, other, _TIP_OVERLAP, F[x, L.T0])
 
 
 @njit(cache=True)

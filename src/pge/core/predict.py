@@ -78,7 +78,7 @@ def place(S, i):
 
 
 #: approach speeds below this many units in the last place of the velocities are rounding
-_STILL_ULPS = 64.0 * 2.0**-52
+STILL_ULPS = 64.0 * 2.0**-52
 
 
 @njit(cache=True, inline="always")
@@ -95,7 +95,7 @@ def still_speed(F, i, j, ix, iy, ivx, ivy, jx, jy, jvx, jvy):
     """
     spin_i = abs(F[i, L.OMEGA]) * (F[i, L.REACH] + abs(ix) + abs(iy))
     spin_j = abs(F[j, L.OMEGA]) * (F[j, L.REACH] + abs(jx) + abs(jy))
-    return _STILL_ULPS * (math.hypot(ivx, ivy) + math.hypot(jvx, jvy) + spin_i + spin_j)
+    return STILL_ULPS * (math.hypot(ivx, ivy) + math.hypot(jvx, jvy) + spin_i + spin_j)
 
 
 @njit(cache=True)

@@ -212,11 +212,11 @@ def _evaluate(t, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, ra
     ``motion = (dx, dy, dvx, dvy, dax, day)``, ``turn = (theta, omega)``. ``geo``
     rows ``0 .. n_a-1`` hold a (none for a circle), the next ``n_b`` rows b.
     Features ``0 .. n_a-1`` (one, the centre, for a circle) are a's points
-    against b, the rest b's vertices against a. When feature ``f``'s value is
-    a face's plane distance, ``facing[f]`` is the centroids' relative
-    acceleration (``da``, or ``-da`` for b's vertices) along the face's normal
-    and ``slack[f] >= 0`` as in ``_signed_distance``; round a corner
-    ``facing[f]`` is NaN and ``slack[f] = -1``. Returns ``D(t)`` and ``D'(t)``.
+    against b, the rest b's vertices against a. ``facing[f]`` is the centroids'
+    relative acceleration (``da``, or ``-da`` for b's vertices) along the
+    gradient ``u`` of feature ``f``'s value, and ``slack[f]`` is as in
+    ``_signed_distance`` (``>= 0`` when the value is a face's plane distance,
+    the only case that uses ``facing``). Returns ``D(t)`` and ``D'(t)``.
     """
     dx, dy, dvx, dvy, dax, day = motion
     theta_a, omega_a = turn_a
@@ -232,7 +232,7 @@ def _evaluate(t, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, ra
     if circle:
         sd, x, y, ux, uy, slack[0] = _signed_distance(ox, oy, geo, 0, n_b)
         value[0] = sd - radius
-        facing[0] = ux * dax + uy * day if slack[0] >= 0.0 else np.nan
+        facing[0] = ux * dax + uy * day
         # relative velocity of the centre and of b's material point at x
         rate[0] = ux * (vx + omega_b * y) + uy * (vy - omega_b * x)
         return ox, oy, vx, vy
@@ -241,14 +241,14 @@ def _evaluate(t, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, ra
         py = geo[i, 1]
         sd, x, y, ux, uy, slack[i] = _signed_distance(ox + px, oy + py, geo, n_a, n_b)
         value[i] = sd
-        facing[i] = ux * dax + uy * day if slack[i] >= 0.0 else np.nan
+        facing[i] = ux * dax + uy * day
         rate[i] = ux * (vx - omega_a * py + omega_b * y) + uy * (vy + omega_a * px - omega_b * x)
     for j in range(n_b):
         qx = geo[n_a + j, 0]
         qy = geo[n_a + j, 1]
         sd, x, y, ux, uy, slack[n_a + j] = _signed_distance(qx - ox, qy - oy, geo, 0, n_a)
         value[n_a + j] = sd
-        facing[n_a + j] = -(ux * dax + uy * day) if slack[n_a + j] >= 0.0 else np.nan
+        facing[n_a + j] = -(ux * dax + uy * day)
         rate[n_a + j] = ux * (-omega_b * qy - vx + omega_a * y) + uy * (omega_b * qx - vy - omega_a * x)
     return ox, oy, vx, vy
 
