@@ -678,6 +678,33 @@ def test_surveyed_scenes_that_overlapped_or_stormed(seed, count, elastic, gravit
     assert result["events"] >= 1000 or result["end"] >= 10.0
 
 
+def run_scene_to(seed, count, elastic, gravity, friction, end):
+    """Run a scene to ``end`` with no checks; returns its time and event count."""
+    world, _, _ = build_spinning_scene(seed, count, elastic, gravity, friction)
+    world.run_until(end)
+    return {"end": world.time, "events": world.stats["events"]}
+
+
+@pytest.mark.parametrize(
+    "seed",
+    [
+        212,  # riders on two faces of one sliding polygon released each other (rest nudges)
+        250,  # the same (tools/repro/repro_rider_pingpong.py)
+        289,  # the same, at t = 0.54
+        339,  # the same, at t = 0.30
+        369,  # a rider leaving its edge at the end, judged on the edge by the kernel (t = 0.23),
+              # then a support pinned on a wall nudged by rests (t = 0.98)
+    ],
+)
+def test_surveyed_scenes_that_stormed_at_one_instant_run_on(seed):
+    """Scenes of ``survey.py overlap --seeds 200 400 --count 12`` (inelastic, gravity, no friction)
+    that ended in the event-storm error (2026-11-23) run to t = 1 s: a support nudged by a rounding
+    amount carries its riders instead of releasing them, and a circle sliding off an edge's end
+    within rounding is judged at the corner by the kernel as by the contact code."""
+    result = guarded(run_scene_to, seed, 12, False, True, False, 1.0, timeout=60.0)
+    assert result["end"] == 1.0
+
+
 def run_full_scene(seed, count, elastic, gravity, friction):
     """Run a scene to t = 10 s with no event budget, checking overlaps at every event."""
     world, _, bodies = build_spinning_scene(seed, count, elastic, gravity, friction)

@@ -459,6 +459,26 @@ def test_circle_polygon_touching_to_rounding_and_separating_too_slowly_recloses_
     assert circle_polygon(0.0, inside, 0.0, 1.0, 0.0, 0.0, 0.25, rows, 0, 4, 1.0)[0] == INF
 
 
+def test_circle_sliding_off_an_edge_end_within_rounding_is_judged_at_the_corner():
+    """A circle touching an edge that it is sliding off at one end, to rounding (5e-17 short of
+    the end), flies off if it is fast enough (v_t^2 > a_n R), as past the end: no contact now, and
+    no reclosing on the edge's plane. The contact code measured the same position from world
+    coordinates, found it past the end and let the rider leave; the kernel found it on the edge,
+    pressed, and the rider came back to rest, for ever at one instant (an event storm, survey seed
+    369)."""
+    rows = outline_rows([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)])
+    for end, direction in ((-0.5, -1.0), (0.5, 1.0)):  # the top edge runs from x = 0.5 to -0.5
+        x = end - direction * 5e-17
+        for leaving in (0.0, 1e-9):
+            fast = circle_polygon(x, 0.75, 2.0 * direction, leaving, 0.0, -9.81, 0.25, rows, 0, 4, 1.0)
+            assert fast[0] == INF, (end, leaving, fast)
+        # Slower than sqrt(a_n R) the corner carries it: pressed, in contact now.
+        slow = circle_polygon(x, 0.75, 1.0 * direction, 0.0, 0.0, -9.81, 0.25, rows, 0, 4, 1.0)
+        assert slow[0] == 0.0
+        # Well inside the edge it is pressed whatever its speed.
+        assert circle_polygon(end - direction * 0.1, 0.75, 2.0 * direction, 0.0, 0.0, -9.81, 0.25, rows, 0, 4, 1.0)[0] == 0.0
+
+
 # ------------------------------------------------------------------ polygon-polygon
 
 

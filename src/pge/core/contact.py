@@ -363,13 +363,16 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
     k_r = F[r, L.INV_MASS]
     if k_s > 1e-12 * k_r and vn != 0.0:
         j = -vn / (k_r + k_s)
-        count = release_riders(S, s, out, count, t)
+        svx = F[s, L.VX]
+        svy = F[s, L.VY]
+        sw = F[s, L.OMEGA]
         if apply_impulse(F, s, keep_s, turns_s, -j * mx, -j * my, rsx, rsy):
             out[count] = s
             count += 1
             if keep_s and not settle_acceleration(S, s, t):
                 detach(S, s)
                 S[13][L.S_RELEASES] += 1
+        count = carry_or_release_riders(S, s, svx, svy, sw, out, count, t)
         F[r, L.VX] += j * k_r * mx
         F[r, L.VY] += j * k_r * my
         vn = (F[r, L.VX] - F[s, L.VX]) * mx + (F[r, L.VY] - F[s, L.VY]) * my
@@ -451,35 +454,58 @@ def release_riders(S, s, out, count, t):
 
 
 @njit(cache=True)
-def resettle_riders(S, s, dvx, dvy, out, count, t):
-    """Carry the bodies resting on ``s`` (directly or through others) over a change of
-    ``s``'s acceleration that leaves its motion continuous (it stopped sliding).
+def resettle_riders(S, s, dvx, dvy, always, out, count, t):
+    """Carry the bodies resting on ``s`` (directly or through others) over a velocity change
+    ``(dvx, dvy)`` of ``s`` that only rounding could tell from none, releasing the rest.
 
-    Each rider takes ``s``'s velocity change ``(dvx, dvy)`` (rounding only), so its
-    relative motion is kept exactly, and its acceleration is settled afresh; one that
-    is no longer pressed on is released with all that rests on it. The riders are
+    A carried rider takes the same change, so its motion relative to its support is
+    kept exactly, and its acceleration is settled afresh; one that is no longer pressed
+    on is released with all that rests on it. Without ``always`` (``s`` was struck) a
+    rider is carried only if the change is within the rounding speed of the rider and
+    its support (``STILL_ULPS`` of their speeds, the kernels' band of "not moving"):
+    a rest or a collision of rounding size (1e-16) on one rider nudges the support by
+    an ulp, and releasing its other riders for that would have them fall back at once,
+    rest again and nudge the support back, for ever at one instant. With ``always``
+    (``s`` stopped sliding, its motion continuous) every rider is carried. The riders are
     advanced to ``t`` and appended to ``out`` from ``count``; returns the new count.
     """
     F = S[0]
     I = S[1]
     stats = S[13]
+    change = math.hypot(dvx, dvy)
     k = count
     count = append_riders(I, s, out, count)
     while k < count:
         r = out[k]
         k += 1
-        if I[r, L.SUPPORT] < 0:
+        support = I[r, L.SUPPORT]
+        if support < 0:
             continue  # released with its support below
         advance(F, r, t)
-        F[r, L.VX] += dvx
-        F[r, L.VY] += dvy
-        if settle_acceleration(S, r, t):
-            count = append_riders(I, r, out, count)
-        else:
-            detach(S, r)
-            stats[L.S_RELEASES] += 1
-            count = release_riders(S, r, out, count, t)
+        _, _, svx, svy = state_at(F, support, t)
+        small = change <= STILL_ULPS * (math.hypot(F[r, L.VX], F[r, L.VY]) + math.hypot(svx - dvx, svy - dvy))
+        if always or small:
+            F[r, L.VX] += dvx
+            F[r, L.VY] += dvy
+            if settle_acceleration(S, r, t):
+                count = append_riders(I, r, out, count)
+                continue
+        detach(S, r)
+        stats[L.S_RELEASES] += 1
+        count = release_riders(S, r, out, count, t)
     return count
+
+
+@njit(cache=True)
+def carry_or_release_riders(S, s, vx0, vy0, w0, out, count, t):
+    """After ``s``'s velocity changed from ``(vx0, vy0, w0)`` at ``t``: carry what rests on it
+    over a change within rounding (``resettle_riders``), release it otherwise (a turn of
+    ``s`` always releases). Returns the new count of ``out``.
+    """
+    F = S[0]
+    if F[s, L.OMEGA] != w0:
+        return release_riders(S, s, out, count, t)
+    return resettle_riders(S, s, F[s, L.VX] - vx0, F[s, L.VY] - vy0, False, out, count, t)
 
 
 @njit(cache=True)

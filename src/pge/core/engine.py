@@ -24,6 +24,7 @@ from pge.core.contact import (
     lowest_along,
     combine,
     detach,
+    carry_or_release_riders,
     release_riders,
     resettle_riders,
     schedule_contact_event,
@@ -341,7 +342,12 @@ def collide(S, a, b, feature, t):
         if I[x, L.SUPPORT] >= 0 and not settle_acceleration(S, x, t):
             detach(S, x)
             S[13][L.S_RELEASES] += 1
-        count = release_riders(S, x, group, count, t)
+        if k < woken:
+            count = release_riders(S, x, group, count, t)
+        elif x == a:
+            count = carry_or_release_riders(S, x, pre[0], pre[1], pre[2], group, count, t)
+        else:
+            count = carry_or_release_riders(S, x, pre[3], pre[4], pre[5], group, count, t)
     # Then the slower of a bounce may come to rest on the other (after the releases, so
     # that a rider settling on a support the impulse just nudged is not let go again).
     rested, count = try_rest(S, a, b, nx, ny, owner, edge, px, py, t, group, count)
@@ -406,7 +412,7 @@ def contact_change(S, r, what, t):
         F[r, L.VY] = F[s, L.VY]
         if settle_acceleration(S, r, t):
             # Its motion stays continuous: what rests on it keeps resting, re-settled.
-            count = resettle_riders(S, r, dvx, dvy, group, count, t)
+            count = resettle_riders(S, r, dvx, dvy, True, group, count, t)
             touch_group(S, group, count)
             return
         detach(S, r)

@@ -65,7 +65,31 @@ def closest_feature(px, py, radius, outline, start, n):
 
 
 @njit(cache=True)
-def _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny):
+def _sliding_off(px, py, vx, vy, outline, start, n, feature):
+    """The corner feature (``-(k + 1)``) a circle touching edge ``feature`` is sliding off
+    at, or ``feature`` itself when it is not at an end of the edge moving outwards.
+
+    "At an end" has a tolerance of ``_EXTENT_TOLERANCE`` of the edge's length: the
+    contact code that lets a rider leave its edge measures the same position from
+    world coordinates, and the two may round to either side of the end.
+    """
+    if feature < 0:
+        return feature
+    row = start + feature
+    tx = -outline[row, 3]
+    ty = outline[row, 2]
+    vt = tx * vx + ty * vy
+    u = tx * (px - outline[row, 0]) + ty * (py - outline[row, 1])
+    tolerance = _EXTENT_TOLERANCE * outline[row, 4]
+    if u >= outline[row, 4] - tolerance and vt > 0.0:
+        return -((feature + 1) % n + 1)
+    if u <= tolerance and vt < 0.0:
+        return -(feature + 1)
+    return feature
+
+
+@njit(cache=True)
+def _pressed(px, py, vx, vy, ax, ay, radius, outline, start, n, feature, nx, ny):
     """Whether a circle touching a feature at zero normal speed is pushed into it.
 
     On a flat edge that is the normal acceleration. Around a corner (or at the
@@ -74,15 +98,8 @@ def _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny):
     fast enough circle flies off instead of pressing.
     """
     accel = nx * ax + ny * ay
-    tx = -ny
-    ty = nx
-    vt = tx * vx + ty * vy
-    curved = feature < 0
-    if not curved:
-        row = start + feature
-        u = tx * (px - outline[row, 0]) + ty * (py - outline[row, 1])
-        curved = (u >= outline[row, 4] and vt > 0.0) or (u <= 0.0 and vt < 0.0)
-    if curved:
+    vt = -ny * vx + nx * vy
+    if _sliding_off(px, py, vx, vy, outline, start, n, feature) < 0:
         accel += vt * vt / radius
     return accel < 0.0
 
@@ -141,9 +158,11 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
         closing = nx * vx + ny * vy
         if abs(closing) <= still:
             closing = 0.0  # neither approaching nor separating, to rounding
-        if gap <= 0.0 and (closing < 0.0 or (closing == 0.0 and _pressed(px, py, vx, vy, ax, ay, radius, outline, start, feature, nx, ny))):
+        if gap <= 0.0 and (closing < 0.0 or (closing == 0.0 and _pressed(px, py, vx, vy, ax, ay, radius, outline, start, n, feature, nx, ny))):
             return 0.0, feature
         if gap <= 0.0 and closing > 0.0:
+            # A circle sliding off the end of an edge is judged against the corner there.
+            feature = _sliding_off(px, py, vx, vy, outline, start, n, feature)
             reclose = _reclosing(px, py, vx, vy, ax, ay, radius, outline, start, feature, horizon)
             if 0.0 < reclose < _INF:
                 best_t = reclose
