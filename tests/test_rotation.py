@@ -694,6 +694,7 @@ def run_scene_to(seed, count, elastic, gravity, friction, end):
         339,  # the same, at t = 0.30
         369,  # a rider leaving its edge at the end, judged on the edge by the kernel (t = 0.23),
               # then a support pinned on a wall nudged by rests (t = 0.98)
+        488,  # a rider leaving its edge at the end, met by the edge's plane 1e-17 s later (t = 0.72)
     ],
 )
 def test_surveyed_scenes_that_stormed_at_one_instant_run_on(seed):

@@ -472,6 +472,10 @@ def test_circle_sliding_off_an_edge_end_within_rounding_is_judged_at_the_corner(
         for leaving in (0.0, 1e-9):
             fast = circle_polygon(x, 0.75, 2.0 * direction, leaving, 0.0, -9.81, 0.25, rows, 0, 4, 1.0)
             assert fast[0] == INF, (end, leaving, fast)
+            # Approaching or leaving within the kernels' band of "not moving" (``still``).
+            for vn in (-1e-17, 1e-17):
+                drift = circle_polygon(x, 0.75, 2.0 * direction, vn, 0.0, -9.81, 0.25, rows, 0, 4, 1.0, 1e-14)
+                assert drift[0] == INF, (end, vn, drift)
         # Slower than sqrt(a_n R) the corner carries it: pressed, in contact now.
         slow = circle_polygon(x, 0.75, 1.0 * direction, 0.0, 0.0, -9.81, 0.25, rows, 0, 4, 1.0)
         assert slow[0] == 0.0

@@ -187,6 +187,9 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
         u = -ny * (px + (vx + hax * t) * t - x0) + nx * (py + (vy + hay * t) * t - y0)
         length = outline[row, 4]
         tolerance = _EXTENT_TOLERANCE * length
+        vt = -ny * (vx + ax * t) + nx * (vy + ay * t)
+        if (u >= length - tolerance and vt > 0.0) or (u <= tolerance and vt < 0.0):
+            continue  # meeting the plane at an end it is sliding off: the corner's to judge
         if -tolerance <= u <= length + tolerance:
             best_t = t
             best_feature = k
