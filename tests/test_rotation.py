@@ -667,6 +667,7 @@ def test_random_rotating_scenes_never_overlap_and_stay_in_the_box(seed, count, e
         (11, 10, False, True, False),  # a circle released at a corner, separating by rounding
         (13, 10, False, True, False),  # and pressed on: no contact was predicted (2.4e-5)
         (4294967294, 12, False, False, True),  # a circle squeezed between two: an event storm
+        (660, 12, False, True, True),  # a corner missed beside an edge plane that rounded clear (3e-9)
     ],
 )
 def test_surveyed_scenes_that_overlapped_or_stormed(seed, count, elastic, gravity, friction):

@@ -483,6 +483,30 @@ def test_circle_sliding_off_an_edge_end_within_rounding_is_judged_at_the_corner(
         assert circle_polygon(end - direction * 0.1, 0.75, 2.0 * direction, 0.0, 0.0, -9.81, 0.25, rows, 0, 4, 1.0)[0] == 0.0
 
 
+#: survey seed 660 (friction): a circle that just left the end of polygon 11's edge 5 at its corner
+TRACED_CORNER_ROWS = np.array([
+    [-0.05872332263830532, -0.019190201019319317, -0.5506946027220777, -0.8347068075275133, 0.04909781962774536],
+    [-0.017741038360268312, -0.04622810529374078, 3.885780586188048e-16, -1.0, 0.05537794512580242],
+    [0.037636906765534106, -0.046228105293740746, 0.9819939738526915, -0.1889122423693061, 0.0438873798234251],
+    [0.045927770099690776, -0.0031309627789530975, 0.988393800660551, 0.1519134451448944, 0.04454564742841628],
+    [0.03916068733263026, 0.04089767898570417, 0.3714359170104008, 0.9284585933441742, 0.04118436195596501],
+    [0.0009227125632176522, 0.056195030235306295, -0.5500603941578706, 0.8351248785534342, 0.038737224914448386],
+    [-0.03142770768895812, 0.03488721703028274, -0.892724327470795, 0.4506032347218743, 0.06057571904958663],
+])
+TRACED_CORNER_CIRCLE = (-0.05487764163550768, 0.07048989529469447, -0.44466199455718125, -0.292879494162379,
+                        3.9693945253423673, -9.81, 0.04263156227135892)
+
+
+def test_circle_touching_a_corner_beside_an_edge_plane_that_rounds_clear_is_pressed_now():
+    """A circle touching a corner (distance exactly its radius) at the border of the edge it just
+    slid off, where that edge's plane distance rounds 7e-18 above the radius: the whole-shape test
+    of "touching now" must still run. It is pressed onto the corner (v_t^2 / R = 6.6 < 10.4, normal
+    speed 1e-15, within ``still``), so the contact is now; the kernel skipped the test, answered a
+    contact 0.077 s later, and the circle sank 3e-9 into the polygon (survey seed 660, friction)."""
+    t, feature = circle_polygon(*TRACED_CORNER_CIRCLE, TRACED_CORNER_ROWS, 0, 7, 1.0, 1e-14)
+    assert (t, feature) == (0.0, -7)
+
+
 # ------------------------------------------------------------------ polygon-polygon
 
 

@@ -153,7 +153,9 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
         s = outline[row, 2] * (px - outline[row, 0]) + outline[row, 3] * (py - outline[row, 1])
         if s > max_s:
             max_s = s
-    if max_s <= radius:
+    # (With a tolerance: at a corner on the border of an edge's region that edge's plane
+    # distance is the corner distance, and the two round differently.)
+    if max_s <= radius * (1.0 + _EXTENT_TOLERANCE):
         feature, nx, ny, gap = closest_feature(px, py, radius, outline, start, n)
         closing = nx * vx + ny * vy
         if abs(closing) <= still:
