@@ -181,7 +181,7 @@ def _settle_turning(S, r, s, mx, my, owner, px, py, vn, an, height, t):
     # than the spin it stops could pay for (else the body tips the other way).
     if -an * ((new_x - cx) * mx + (new_y - cy) * my) > 0.5 * omega * omega * inertia:
         return False
-    if not turn_if_clear(S, r, qx, qy, c, sn, delta, s, -1.0, t):
+    if not turn_if_clear(S, r, qx, qy, c, sn, delta, 0.0, 0.0, s, -1.0, t):
         return False
     F[r, L.OMEGA] = 0.0
     return True
@@ -198,11 +198,12 @@ def lowest_along(OL, start, n, mx, my):
 
 
 @njit(cache=True)
-def turn_if_clear(S, x, qx, qy, c, sn, delta, other, other_tolerance, t):
+def turn_if_clear(S, x, qx, qy, c, sn, delta, slide_x, slide_y, other, other_tolerance, t):
     """Turn body ``x`` by ``delta`` (``c``, ``sn`` its cosine and sine) about the point ``q``,
-    which stays put, unless that pushes it into a neighbour (other than ``other``) by more
-    than 1e-12 of their sizes or, when ``other_tolerance >= 0``, into ``other`` by more
-    than that many of their sizes; then it is left as it was. Returns whether it turned."""
+    which stays put, then move it by ``slide``, unless that pushes it into a neighbour
+    (other than ``other``) by more than 1e-12 of their sizes or, when ``other_tolerance >= 0``,
+    into ``other`` by more than that many of their sizes; then it is left as it was.
+    Returns whether it moved."""
     F = S[0]
     I = S[1]
     old_x = F[x, L.X]
@@ -210,8 +211,8 @@ def turn_if_clear(S, x, qx, qy, c, sn, delta, other, other_tolerance, t):
     old_angle = F[x, L.ANGLE]
     ox = old_x - qx
     oy = old_y - qy
-    F[x, L.X] = qx + c * ox - sn * oy
-    F[x, L.Y] = qy + sn * ox + c * oy
+    F[x, L.X] = qx + c * ox - sn * oy + slide_x
+    F[x, L.Y] = qy + sn * ox + c * oy + slide_y
     F[x, L.ANGLE] = old_angle + delta
     orient(F, I, S[2], S[18], x, t)
     if pushes_into_neighbour(S, x, other) or (

@@ -218,7 +218,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
         free_a = a if not keep_a else -1
         free_b = b if not keep_b else -1
         if not lift_from_motion(F, free_a, free_b, px, py, nx, ny, budget, SLOWEST * target):
-            if tip_to_pay(S, a, b, owner, px, py, pre):
+            if tip_to_pay(S, a, b, owner, px, py, nx, ny, pre):
                 S[13][L.S_TIPS] += 1
             else:
                 S[13][L.S_UNPAID_LIFTS] += 1
@@ -229,10 +229,13 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
 _LARGEST_TIP = 0.01
 #: a turn may not push the body into another by more than this many bounding radii
 _TIP_OVERLAP = 1e-12
+#: slides of the corner along the face (in units of the tip's arc at the bounding radius)
+#: tried when the tip alone would push into a neighbour
+_TIP_SLIDES = (0.5, 1.0, 2.0)
 
 
 @njit(cache=True)
-def tip_to_pay(S, a, b, owner, px, py, pre):
+def tip_to_pay(S, a, b, owner, px, py, nx, ny, pre):
     """Pay for a lift the pair's motion cannot pay for by tipping the body that stands on a
     corner: turn it about that corner ``p`` (which stays where it is) in the direction its
     weight turns it, just far enough that the work its acceleration does equals the kinetic
@@ -284,7 +287,18 @@ def tip_to_pay(S, a, b, owner, px, py, pre):
         delta *= (gain / work if work > 0.0 else 2.0) * (1.0 + 1e-9)
     if not work >= gain:
         return False
-    return turn_if_clear(S, x, px, py, c, s, delta, other, _TIP_OVERLAP, F[x, L.T0])
+    if turn_if_clear(S, x, px, py, c, s, delta, 0.0, 0.0, other, _TIP_OVERLAP, F[x, L.T0]):
+        return True
+    # A neighbour leans on the side it tips to: the corner slides along the face under it
+    # (which changes no height) as far as the tipping side moves, one way or the other.
+    tx = -ny
+    ty = nx
+    for scale in _TIP_SLIDES:
+        for sign in (1.0, -1.0):
+            step = sign * scale * abs(delta) * F[x, L.REACH]
+            if turn_if_clear(S, x, px, py, c, s, delta, step * tx, step * ty, other, _TIP_OVERLAP, F[x, L.T0]):
+                return True
+    return False
 
 
 @njit(cache=True)
