@@ -640,7 +640,6 @@ def run_overlap_scene(seed, count, elastic, gravity, friction):
     return {"worst": worst, "first_bad": first_bad, "events": events, "end": end, "stats": world.stats}
 
 
-@pytest.mark.xfail(strict=False, reason="KNOWN ENGINE BUG (issue 5 open): no overlap in 48 full 10 s runs and 720 surveyed scenes (2026-11-22), but 2 of 480 scenes of tools/repro/survey.py overlap --seeds 200 260 --count 12 (seeds 212 and 250, inelastic, gravity, frictionless) end in the event-storm error: circles resting on the two faces of one sliding polygon release each other at one instant, each rest changing the polygon's velocity by an ulp (tools/repro/repro_rider_pingpong.py); a draw hits one about 1 run in 12")
 @SCENE_SETTINGS
 @given(
     seed=st.integers(0, 2**32 - 1),
@@ -811,7 +810,7 @@ def test_a_corner_that_tips_into_a_leaning_neighbour_slides_to_pay_for_its_lift(
     assert result["first_bad"] is None, f"energy gain {result['first_bad']}"
 
 
-@pytest.mark.xfail(strict=False, reason="KNOWN ENGINE BUG (issue 5 open): a polygon on a corner pinched between the floor and bodies that lean on it runs out of energy for the pivot rule's lifts; when the neighbour leans on the side it would tip to, it cannot tip to pay either and gets an unpaid lift (at most m |g''| h, counted in stats['unpaid_lifts']; 4 of 40 scenes of tools/repro/survey.py energy --gravity on 2026-11-22, seeds 3 12 15 36); those piles are not in equilibrium (they should tip or slide together), which needs contact forces acting over time")
+@pytest.mark.xfail(strict=False, reason="KNOWN ENGINE BUG (issue 5 open): bodies in a pile that cannot hold still (a resting circle pressed by a free polygon, a polygon on a corner pinched on both sides) run out of energy for the pivot rule's lifts and get an unpaid lift (at most m |g''| h, counted in stats['unpaid_lifts']); tools/repro/survey.py energy --seeds 0 200 --gravity: 24 of 200 scenes on 2026-11-23; ending it needs contact forces acting over time on several contacts at once")
 @SCENE_SETTINGS
 @given(seed=st.integers(0, 2**32 - 1), count=st.integers(5, 12))
 def test_energy_never_increases_at_collisions_under_gravity(seed, count):

@@ -8,7 +8,11 @@ for ever at one instant, until the engine's event-storm error after a million co
 
 Tried and not kept (2026-11-22): not sharing a rounding-level rest impulse with the support fixed
 seed 250 but seed 212 stormed later the same way; also ignoring approaches within ``still_speed``
-in ``collide`` made other scenes (seed 206) storm in graze loops. Expected: no storm."""
+in ``collide`` made other scenes (seed 206) storm in graze loops.
+
+Fixed 2026-11-23: a support whose velocity changes by no more than the rounding speed of a rider
+(``STILL_ULPS`` of the rider's and the support's speeds) carries the rider instead of releasing
+it (``contact.resettle_riders``). Expected: no storm, t = 1.0."""
 import os
 import sys
 
