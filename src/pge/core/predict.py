@@ -27,6 +27,8 @@ from pge.toi.rotating import CHECKPOINT, rotating_circle_polygon, rotating_polyg
 
 _INF = math.inf
 CIRCLE = 0
+#: the longest a swept box is made for (s): finite, so that a box is never infinite
+_LONGEST_SPAN = 1e300
 
 
 @njit(cache=True, inline="always")
@@ -59,6 +61,9 @@ def place(S, i):
         # A spinning polygon's corners travel |omega| R faster than its centroid: the
         # horizon bounds their path too, which keeps the rotating kernels' windows short.
         span = travel_horizon(math.hypot(vx, vy) + spin, math.hypot(ax, ay), P[L.TRAVEL])
+        # A speed of 1e-310 (denormal, left by a long decay) overflows the span to inf, and
+        # v * inf would make the box infinite, which the grid cannot file.
+        span = min(span, _LONGEST_SPAN)
         horizon = now + span
         if horizon <= now:
             horizon = np.nextafter(now, _INF)
