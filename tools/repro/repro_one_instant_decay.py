@@ -5,8 +5,9 @@ again at one instant, its velocity and spin shrinking by a constant factor each 
 instead of settling in one go: sequential impulses at two contact points converging slowly, which
 only a simultaneous solve of the two points would end. Before 2026-11-23 the decay ran down to a
 denormal speed (1e-310), whose travel horizon overflowed to inf and made the body's swept box NaN;
-the grid lost the body and a circle passed 6% into it at t = 4.06. Now the box stays finite and the
-scene ends in the event-storm error. Expected: no storm."""
+the grid lost the body and a circle passed 6% into it at t = 4.06. With the box kept finite the
+scene ended in the event-storm error. Fixed 2026-11-23: a free body that a collision leaves slower
+than 1e-150 of its size per second is stopped (``engine.NO_SPEED``). Expected: no storm."""
 import os
 import sys
 

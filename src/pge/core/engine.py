@@ -34,7 +34,7 @@ from pge.core.contact import (
 from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
 from pge.core.motion import advance, orient
-from pge.core.pivot import pivot
+from pge.core.pivot import pivot, slow_neighbours_to_pay
 from pge.core.predict import new_mark, place, predict
 from pge.core.response import apply_impulse, contact_response
 from pge.core.sleep import try_sleep, wake
@@ -46,6 +46,8 @@ from pge.toi.rotating import rotating_polygon_polygon_contact
 
 _INF = math.inf
 CIRCLE = 0
+#: a body slower than this many of its bounding radii per second is stopped after a collision
+NO_SPEED = 1e-150
 
 
 # ---------------------------------------------------------------- work list
@@ -334,6 +336,17 @@ def collide(S, a, b, feature, t):
             if apply_impulse(F, b, keep_b, turns_b, -jx, -jy, rbx, rby):
                 group[count] = b
                 count += 1
+    # A speed that a run of impulses at one instant has shrunk below any meaning (a body
+    # crossing its own size in 1e150 s) is none: sequential impulses at two corners against
+    # a face converge geometrically and would otherwise go on into denormal numbers.
+    for k in range(woken, count):
+        x = group[k]
+        if I[x, L.SUPPORT] < 0:
+            speed = math.hypot(F[x, L.VX], F[x, L.VY]) + abs(F[x, L.OMEGA]) * F[x, L.REACH]
+            if speed < NO_SPEED * F[x, L.REACH]:
+                F[x, L.VX] = 0.0
+                F[x, L.VY] = 0.0
+                F[x, L.OMEGA] = 0.0
     # The impulse changed these bodies: keep or end their own rest, and release what
     # rests on them.
     changed = count
@@ -356,7 +369,12 @@ def collide(S, a, b, feature, t):
     if rested:
         S[13][L.S_RESTS] += 1
     else:
+        unpaid = S[13][L.S_UNPAID_LIFTS]
         redone, kicked = pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre)
+        if S[13][L.S_UNPAID_LIFTS] > unpaid:
+            paid, count = slow_neighbours_to_pay(S, a, b, pre, group, count, t)
+            if paid:
+                S[13][L.S_UNPAID_LIFTS] = unpaid
         if redone >= 0.0:
             impulse = max(redone, 1e-300)
             for x in (a, b):

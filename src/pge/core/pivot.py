@@ -15,7 +15,10 @@ from numba import njit
 
 from pge.core import layout as L
 from pge.core.contact import combine, relative_tangential, turn_if_clear
+from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
+from pge.core.motion import advance
+from pge.core.overlap import nearest_normal
 from pge.core.predict import still_speed
 from pge.core.response import apply_impulse, contact_response
 from pge.numerics.linalg import solve_spd
@@ -299,6 +302,73 @@ def tip_to_pay(S, a, b, owner, px, py, nx, ny, pre):
             if turn_if_clear(S, x, px, py, c, s, delta, step * tx, step * ty, other, _TIP_OVERLAP, F[x, L.T0]):
                 return True
     return False
+
+
+#: at most this many neighbours share the cost of an unpaid lift
+_MOST_NEIGHBOURS = 32
+
+
+@njit(cache=True)
+def slow_neighbours_to_pay(S, a, b, pre, out, count, t):
+    """Pay for a lift that neither the pair's motion nor a move of the pair could pay for out of
+    the kinetic energy of the free bodies touching the pair (within a rest height): each is
+    slowed by the same factor, velocity and spin, so that together they lose what the lift
+    gave. In a pile that cannot hold still they are what presses the pair together, and the
+    contact forces acting over time that the lifts imitate would take that energy from them.
+    The slowed bodies are advanced to ``t`` and appended to ``out`` from ``count``. Returns
+    ``(paid, count)``; nothing changes when they have too little energy."""
+    F = S[0]
+    I = S[1]
+    P = S[3]
+    scratch = S[15]
+    va_x, va_y, wa, vb_x, vb_y, wb = pre
+    gain = 0.0
+    for y in (a, b):
+        if F[y, L.INV_MASS] > 0.0:
+            gain += _kinetic(F, y, F[y, L.VX], F[y, L.VY], F[y, L.OMEGA])
+            if y == a:
+                gain -= _kinetic(F, y, va_x, va_y, wa)
+            else:
+                gain -= _kinetic(F, y, vb_x, vb_y, wb)
+    if not gain > 0.0:
+        return True, count
+    ids = np.empty(_MOST_NEIGHBOURS, dtype=np.int64)
+    n = 0
+    for x in (a, b):
+        if I[x, L.FIXED] != 0:
+            continue
+        m = gather(S, x)
+        for k in range(m):
+            j = scratch[k]
+            if j == a or j == b or I[j, L.FIXED] != 0 or I[j, L.SUPPORT] >= 0 or I[j, L.SLEEP_NEXT] >= 0:
+                continue
+            if not F[j, L.INV_MASS] > 0.0 or n == _MOST_NEIGHBOURS:
+                continue
+            seen = False
+            for q in range(n):
+                seen = seen or ids[q] == j
+            if seen:
+                continue
+            _, _, depth = nearest_normal(S, x, j)
+            if depth >= -P[L.REST_HEIGHT] * (F[x, L.REACH] + F[j, L.REACH]):
+                ids[n] = j
+                n += 1
+    total = 0.0
+    for q in range(n):
+        j = ids[q]
+        advance(F, j, t)
+        total += _kinetic(F, j, F[j, L.VX], F[j, L.VY], F[j, L.OMEGA])
+    if not total > gain:
+        return False, count
+    factor = math.sqrt(1.0 - gain / total) * (1.0 - 1e-12)
+    for q in range(n):
+        j = ids[q]
+        F[j, L.VX] *= factor
+        F[j, L.VY] *= factor
+        F[j, L.OMEGA] *= factor
+        out[count] = j
+        count += 1
+    return True, count
 
 
 @njit(cache=True)
