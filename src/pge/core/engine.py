@@ -369,12 +369,11 @@ def collide(S, a, b, feature, t):
     if rested:
         S[13][L.S_RESTS] += 1
     else:
-        unpaid = S[13][L.S_UNPAID_LIFTS]
-        redone, kicked = pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre)
-        if S[13][L.S_UNPAID_LIFTS] > unpaid:
+        redone, kicked, owed = pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre)
+        if owed:
             paid, count = slow_neighbours_to_pay(S, a, b, pre, group, count, t)
-            if paid:
-                S[13][L.S_UNPAID_LIFTS] = unpaid
+            if not paid:
+                S[13][L.S_UNPAID_LIFTS] += 1
         if redone >= 0.0:
             impulse = max(redone, 1e-300)
             for x in (a, b):

@@ -100,8 +100,9 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
     on supports at rest: they stop instead (``_holds_at_rest``). ``owner`` is the
     body whose face the contact is on (``-1``: a circle round a corner or a circle),
     which says how the normal turns (``press_rate``). Returns the
-    new normal impulse, or -1.0 if the rule does not apply, and whether the contact
-    was lifted from (nearly) at rest.
+    new normal impulse, or -1.0 if the rule does not apply; whether the contact
+    was lifted from (nearly) at rest; and whether that lift is still unpaid (the caller
+    may let the bodies touching the pair pay: ``slow_neighbours_to_pay``).
     """
     F = S[0]
     I = S[1]
@@ -148,7 +149,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
         F[a, L.REACH] if I[a, L.KIND] != CIRCLE else 0.0, F[b, L.REACH], still, bend,
     )
     if not curvature < noise:
-        return -1.0, False
+        return -1.0, False, False
     ux = va_x - wa * ray - (vb_x - wb * rby)
     uy = va_y + wa * rax - (vb_y + wb * rbx)
     un = ux * nx + uy * ny
@@ -167,7 +168,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
     now_x = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
     now_y = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
     if now_x * nx + now_y * ny >= target:
-        return -1.0, False
+        return -1.0, False, False
     # Bounce again from the velocities before the collision.
     F[a, L.VX] = va_x
     F[a, L.VY] = va_y
@@ -181,7 +182,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
     bnn, bnt, btt = contact_response(F, b, keep_b, turns_b, rbx, rby, nx, ny, tx, ty)
     knn = ann + bnn
     if not knn > 0.0:
-        return -1.0, False
+        return -1.0, False, False
     knt = ant + bnt
     ktt = att + btt
     jn = 0.0
@@ -205,7 +206,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
                 F[x, L.VY] = 0.0
                 F[x, L.OMEGA] = 0.0
         S[13][L.S_STOPS] += 1
-        return jn, kick
+        return jn, kick, False
     if not paid:
         # What the bodies that took part may spend: their energy before the bounce, less
         # what a kept-resting one has now (fixed bodies keep theirs).
@@ -224,8 +225,8 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
             if tip_to_pay(S, a, b, owner, px, py, nx, ny, pre):
                 S[13][L.S_TIPS] += 1
             else:
-                S[13][L.S_UNPAID_LIFTS] += 1
-    return jn, kick
+                return jn, kick, True
+    return jn, kick, False
 
 
 #: a turn that pays for a lift may be no larger than this (radians)
@@ -256,15 +257,7 @@ def tip_to_pay(S, a, b, owner, px, py, nx, ny, pre):
     other = owner
     if I[x, L.KIND] == CIRCLE or I[x, L.FIXED] != 0 or I[x, L.SUPPORT] >= 0 or not F[x, L.INV_MASS] > 0.0:
         return False
-    va_x, va_y, wa, vb_x, vb_y, wb = pre
-    gain = 0.0
-    for y in (a, b):
-        if F[y, L.INV_MASS] > 0.0:
-            gain += _kinetic(F, y, F[y, L.VX], F[y, L.VY], F[y, L.OMEGA])
-            if y == a:
-                gain -= _kinetic(F, y, va_x, va_y, wa)
-            else:
-                gain -= _kinetic(F, y, vb_x, vb_y, wb)
+    gain = lift_gain(F, a, b, pre)
     if not gain > 0.0:
         return True
     mass = 1.0 / F[x, L.INV_MASS]
@@ -321,15 +314,7 @@ def slow_neighbours_to_pay(S, a, b, pre, out, count, t):
     I = S[1]
     P = S[3]
     scratch = S[15]
-    va_x, va_y, wa, vb_x, vb_y, wb = pre
-    gain = 0.0
-    for y in (a, b):
-        if F[y, L.INV_MASS] > 0.0:
-            gain += _kinetic(F, y, F[y, L.VX], F[y, L.VY], F[y, L.OMEGA])
-            if y == a:
-                gain -= _kinetic(F, y, va_x, va_y, wa)
-            else:
-                gain -= _kinetic(F, y, vb_x, vb_y, wb)
+    gain = lift_gain(F, a, b, pre)
     if not gain > 0.0:
         return True, count
     ids = np.empty(_MOST_NEIGHBOURS, dtype=np.int64)
@@ -389,6 +374,22 @@ def _holds_at_rest(S, x):
     _, at, an = relative_tangential(S, x, S[3][L.TIME])
     mu = combine(F[x, L.FRICTION], F[s, L.FRICTION], Q[L.FRICTION_RULE])
     return an < 0.0 and abs(at) <= -mu * an
+
+
+@njit(cache=True)
+def lift_gain(F, a, b, pre):
+    """The kinetic energy the bodies ``a`` and ``b`` have gained since ``pre`` (their
+    velocities and spins then); fixed bodies count for nothing."""
+    va_x, va_y, wa, vb_x, vb_y, wb = pre
+    gain = 0.0
+    for y in (a, b):
+        if F[y, L.INV_MASS] > 0.0:
+            gain += _kinetic(F, y, F[y, L.VX], F[y, L.VY], F[y, L.OMEGA])
+            if y == a:
+                gain -= _kinetic(F, y, va_x, va_y, wa)
+            else:
+                gain -= _kinetic(F, y, vb_x, vb_y, wb)
+    return gain
 
 
 @njit(cache=True, inline="always")
