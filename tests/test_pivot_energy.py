@@ -28,6 +28,8 @@ from test_rotation import G, build_spinning_scene, mechanical_energy
 
 from pge import Collision, World
 from pge.core import layout as L
+from pge.core.contact import try_rest
+from pge.core.motion import advance
 from pge.core.pivot import lift_from_motion, paid_lift
 
 ENERGY = 1e-12  # allowed relative energy gain (exact arithmetic: rounding of the engine only)
@@ -600,3 +602,59 @@ def test_spinning_scene_energy_never_rises(seed):
         if collisions >= 1500:
             break
     assert collisions == 1500
+
+
+# ------------------------------------------------------------------ 4. coming to rest on a movable support
+
+
+def _rider_beside_a_sliding_box(separating):
+    """A box (0.2 x 0.2, m 1) resting on a frictional floor, set sliding left (so friction
+    decelerates it towards +x), and a ball (R 0.05, m 0.7) just touching its right face at
+    mid-height, moving with it but ``separating`` faster to the right. Returns the world, the
+    ball and the box, both advanced to the world's time."""
+    world = World(gravity=(0.0, -G), elasticity=0.0, bounds=(-1.0, -1.0, 3.0, 3.0))
+    floor = world.add_box(-1.0, -0.2, 4.0, 0.2, fixed=True, friction=0.5, name="floor")
+    box = world.add_box(0.5, 1e-4, 0.2, 0.2, mass=1.0, elasticity=0.0, friction=0.5, name="box")
+    world.run_until(0.1)
+    assert box.resting_on is floor
+    box.velocity = (-0.5, 0.0)
+    world.run_until(0.11)
+    assert box.resting_on is floor and box.total_acceleration[0] > 0.0  # pressed into the ball
+    ball = world.add_circle((box.position[0] + 0.15, 0.1), 0.05, mass=0.7,
+                            velocity=(box.velocity[0] + separating, 0.0), friction=0.5, name="ball")
+    F = world._state.S[0]
+    advance(F, ball.id, world.time)
+    advance(F, box.id, world.time)
+    return world, ball, box
+
+
+@pytest.mark.parametrize("tilt", [-1e-15, 0.0, 1e-15])
+@pytest.mark.parametrize("separating", [1e-3, -1e-3])
+def test_coming_to_rest_on_a_resting_sliding_support_shares_the_plastic_impulse(tilt, separating):
+    """``try_rest`` of a ball onto the vertical face of a box that slides on the floor: the plastic
+    impulse that stops their relative normal velocity ``u`` is shared (the box moves across its
+    own rest normal), so horizontal momentum is kept and exactly ``u^2 / (2 (1/m_ball + 1/m_box))``
+    of kinetic energy is lost. ``tilt`` is the rounding the contact normal carries in the traced
+    survey scene (energy seed 141: (1, -5.8e-16)); with it the box was once treated as immovable
+    and the ball was pushed back onto it, gaining energy whenever it was leaving."""
+    world, ball, box = _rider_beside_a_sliding_box(separating)
+    S = world._state.S
+    F, I, OL = S[0], S[1], S[2]
+    r, s = ball.id, box.id
+    norm = math.hypot(1.0, tilt)
+    mx, my = 1.0 / norm, tilt / norm
+    right = [k for k in range(I[s, L.OUTLINE_N]) if OL[I[s, L.OUTLINE_START] + k, L.O_NX] > 0.9]
+    assert len(right) == 1
+
+    def energy_and_momentum():
+        energy = sum(0.5 * (F[x, L.VX] ** 2 + F[x, L.VY] ** 2) / F[x, L.INV_MASS] for x in (r, s))
+        return energy, sum(F[x, L.VX] / F[x, L.INV_MASS] for x in (r, s))
+
+    energy0, momentum0 = energy_and_momentum()
+    u = (F[r, L.VX] - F[s, L.VX]) * mx + (F[r, L.VY] - F[s, L.VY]) * my
+    rested, _ = try_rest(S, r, s, mx, my, s, right[0], F[s, L.X] + 0.1, 0.1, world.time, S[17], 0)
+    energy1, momentum1 = energy_and_momentum()
+    assert rested and ball.resting_on is box
+    assert energy1 - energy0 == pytest.approx(-u * u / (2.0 * (1.0 / 0.7 + 1.0)), rel=1e-6)
+    assert momentum1 == pytest.approx(momentum0, abs=1e-12)
+    assert (F[r, L.VX] - F[s, L.VX]) * mx + (F[r, L.VY] - F[s, L.VY]) * my == pytest.approx(0.0, abs=1e-15)

@@ -101,6 +101,7 @@ STAT_NAMES = (
     "sleeps",
     "wakes",
     "tips",
+    "far_payments",
 )
 (
     S_EVENTS,
@@ -125,8 +126,9 @@ STAT_NAMES = (
     S_SLEEPS,
     S_WAKES,
     S_TIPS,
-) = range(22)
-NSTATS = 22
+    S_FAR_PAYMENTS,
+) = range(23)
+NSTATS = 23
 
 # ---- event kinds (high bits of the heap key; equal times pop in this order) --
 COLLISION, CONTACT_EVENT, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3, 4

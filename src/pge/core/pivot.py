@@ -17,7 +17,7 @@ from pge.core import layout as L
 from pge.core.contact import combine, relative_tangential, turn_if_clear
 from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
-from pge.core.motion import advance
+from pge.core.motion import advance, state_at
 from pge.core.overlap import nearest_normal
 from pge.core.predict import still_speed
 from pge.core.response import apply_impulse, contact_response
@@ -285,31 +285,40 @@ def tip_to_pay(S, a, b, owner, px, py, nx, ny, pre):
         return False
     if turn_if_clear(S, x, px, py, c, s, delta, 0.0, 0.0, other, _TIP_OVERLAP, F[x, L.T0]):
         return True
-    # A neighbour leans on the side it tips to: the corner slides along the face under it
-    # (which changes no height) as far as the tipping side moves, one way or the other.
+    # A neighbour leans on the side it tips to: the corner slides along the face under it as
+    # far as the tipping side moves, one way or the other, if the turn and the slide together
+    # still do the work (uphill on a sloping face the slide costs some).
     tx = -ny
     ty = nx
     for scale in _TIP_SLIDES:
         for sign in (1.0, -1.0):
             step = sign * scale * abs(delta) * F[x, L.REACH]
+            if not work + mass * step * (ax * tx + ay * ty) >= gain:
+                continue
             if turn_if_clear(S, x, px, py, c, s, delta, step * tx, step * ty, other, _TIP_OVERLAP, F[x, L.T0]):
                 return True
     return False
 
 
-#: at most this many neighbours share the cost of an unpaid lift
-_MOST_NEIGHBOURS = 32
+#: at most this many bodies of the pile round an unpaid lift are searched for payers
+_LARGEST_PILE = 64
 
 
 @njit(cache=True)
 def slow_neighbours_to_pay(S, a, b, pre, out, count, t):
     """Pay for a lift that neither the pair's motion nor a move of the pair could pay for out of
-    the kinetic energy of the free bodies touching the pair (within a rest height): each is
-    slowed by the same factor, velocity and spin, so that together they lose what the lift
-    gave. In a pile that cannot hold still they are what presses the pair together, and the
-    contact forces acting over time that the lifts imitate would take that energy from them.
-    The slowed bodies are advanced to ``t`` and appended to ``out`` from ``count``. Returns
-    ``(paid, count)``; nothing changes when they have too little energy."""
+    the kinetic energy of other bodies (``_payable``: a free body's motion, a resting circle's
+    spin), taking it from as near the pair as can pay.
+
+    First the pile round the pair, ring by ring: bodies within a rest height of a body already
+    in it, through free and resting bodies, never through fixed or sleeping ones. In a pile
+    that cannot hold still its bodies are what press the pair together, and the contact
+    forces acting over time that the lifts imitate would take the energy from them. Once the
+    bodies found so far have more energy than the lift gave, each is slowed by the same
+    factor. If the pile (at most ``_LARGEST_PILE`` bodies) is too poor, the richest bodies of
+    the world pay, fewest first (counted in ``stats['far_payments']``). The slowed bodies are
+    advanced to ``t`` and appended to ``out`` from ``count``. Returns ``(paid, count)``;
+    nothing changes when all of them together are too poor."""
     F = S[0]
     I = S[1]
     P = S[3]
@@ -317,43 +326,92 @@ def slow_neighbours_to_pay(S, a, b, pre, out, count, t):
     gain = lift_gain(F, a, b, pre)
     if not gain > 0.0:
         return True, count
-    ids = np.empty(_MOST_NEIGHBOURS, dtype=np.int64)
-    n = 0
-    for x in (a, b):
-        if I[x, L.FIXED] != 0:
-            continue
-        m = gather(S, x)
-        for k in range(m):
-            j = scratch[k]
-            if j == a or j == b or I[j, L.FIXED] != 0 or I[j, L.SUPPORT] >= 0 or I[j, L.SLEEP_NEXT] >= 0:
-                continue
-            if not F[j, L.INV_MASS] > 0.0 or n == _MOST_NEIGHBOURS:
-                continue
-            seen = False
-            for q in range(n):
-                seen = seen or ids[q] == j
-            if seen:
-                continue
-            _, _, depth = nearest_normal(S, x, j)
-            if depth >= -P[L.REST_HEIGHT] * (F[x, L.REACH] + F[j, L.REACH]):
-                ids[n] = j
-                n += 1
+    pile = np.empty(_LARGEST_PILE, dtype=np.int64)
+    pile[0] = a
+    pile[1] = b
+    size = 2
+    ring_start = 0
     total = 0.0
-    for q in range(n):
-        j = ids[q]
-        advance(F, j, t)
-        total += _kinetic(F, j, F[j, L.VX], F[j, L.VY], F[j, L.OMEGA])
+    while ring_start < size and not total > gain:
+        ring_end = size
+        for k in range(ring_start, ring_end):
+            x = pile[k]
+            if I[x, L.FIXED] != 0:
+                continue
+            m = gather(S, x)
+            for q in range(m):
+                j = scratch[q]
+                if I[j, L.FIXED] != 0 or I[j, L.SLEEP_NEXT] >= 0 or size == _LARGEST_PILE:
+                    continue
+                seen = False
+                for r in range(size):
+                    seen = seen or pile[r] == j
+                if seen:
+                    continue
+                _, _, depth = nearest_normal(S, x, j)
+                if depth < -P[L.REST_HEIGHT] * (F[x, L.REACH] + F[j, L.REACH]):
+                    continue
+                pile[size] = j
+                total += _payable(F, I, j, t)
+                size += 1
+        ring_start = ring_end
+    if total > gain:
+        return True, _pay(F, I, pile[2:size], gain / total, out, count, t)
+    # The pile is too poor: the richest bodies anywhere pay, as few as will do.
+    candidates = np.empty(I.shape[0], dtype=np.int64)
+    energies = np.empty(I.shape[0])
+    n = 0
+    for j in range(I.shape[0]):
+        if j == a or j == b or I[j, L.ALIVE] == 0:
+            continue
+        energy = _payable(F, I, j, t)
+        if energy > 0.0:
+            candidates[n] = j
+            energies[n] = energy
+            n += 1
+    order = np.argsort(-energies[:n], kind="mergesort")  # stable: deterministic among equals
+    total = 0.0
+    used = 0
+    while used < n and not total > gain:
+        total += energies[order[used]]
+        used += 1
     if not total > gain:
         return False, count
-    factor = math.sqrt(1.0 - gain / total) * (1.0 - 1e-12)
-    for q in range(n):
-        j = ids[q]
-        F[j, L.VX] *= factor
-        F[j, L.VY] *= factor
+    S[13][L.S_FAR_PAYMENTS] += 1
+    return True, _pay(F, I, candidates[order[:used]], gain / total, out, count, t)
+
+
+@njit(cache=True)
+def _payable(F, I, j, t):
+    """The kinetic energy body ``j`` can give up to pay for a lift at ``t`` without changing
+    how it rests: all of a free body's (velocity and spin), a resting circle's spin (which its
+    rest does not depend on), nothing of a fixed, sleeping or resting polygon."""
+    if I[j, L.FIXED] != 0 or I[j, L.SLEEP_NEXT] >= 0 or not F[j, L.INV_MASS] > 0.0:
+        return 0.0
+    if I[j, L.SUPPORT] >= 0:
+        if I[j, L.KIND] != CIRCLE:
+            return 0.0
+        return _kinetic(F, j, 0.0, 0.0, F[j, L.OMEGA])
+    _, _, vx, vy = state_at(F, j, t)
+    return _kinetic(F, j, vx, vy, F[j, L.OMEGA])
+
+
+@njit(cache=True)
+def _pay(F, I, payers, share, out, count, t):
+    """Slow every body of ``payers`` by the factor that takes ``share`` of its payable energy
+    (``_payable``) away; append those that changed to ``out`` from ``count``."""
+    factor = math.sqrt(1.0 - share) * (1.0 - 1e-12)
+    for j in payers:
+        if not _payable(F, I, j, t) > 0.0:
+            continue
+        if I[j, L.SUPPORT] < 0:
+            advance(F, j, t)
+            F[j, L.VX] *= factor
+            F[j, L.VY] *= factor
         F[j, L.OMEGA] *= factor
         out[count] = j
         count += 1
-    return True, count
+    return count
 
 
 @njit(cache=True)
