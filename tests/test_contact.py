@@ -201,6 +201,29 @@ def test_stack_of_three_boxes_settles_and_stays_stacked(elasticity, widths, gap)
     assert world.overlaps(EXACT) == []
 
 
+@pytest.mark.xfail(strict=True, reason="KNOWN ENGINE BUG (issue 5 open): a rider's weight and friction do not load its support (one-way coupling): the riding box is sped up by friction while the box under it keeps its speed, so momentum and energy rise; tools/repro/repro_oneway_rider.py")
+def test_box_dropped_on_a_box_sliding_on_ice_is_dragged_along_keeping_momentum():
+    """A box (m 1, friction 0.5) dropped with no horizontal speed onto a box (m 1) sliding at 2 m/s
+    on a frictionless floor: only friction between the two acts horizontally, so their horizontal
+    momentum stays 2 kg m/s and their energy never rises, sampled every 0.01 s while the top box
+    rides, until it slides off the back or both move together."""
+    world, floor = floor_world(elasticity=0.0, bounds=(-1.0, -1.0, 5.0, 3.0))
+    low = world.add_box(0.0, 1e-4, 0.4, 0.1, mass=1.0, elasticity=0.0, friction=0.0, name="low")
+    world.run_until(0.05)
+    low.velocity = (2.0, 0.0)
+    top = world.add_box(0.1, 0.1 + 1e-3, 0.1, 0.1, mass=1.0, elasticity=0.0, friction=0.5, name="top")
+    before = energy(world)
+    rode = False
+    for k in range(1, 31):
+        world.run_until(0.05 + 0.01 * k)
+        rode = rode or top.resting_on is low
+        assert low.velocity[0] + top.velocity[0] == pytest.approx(2.0, abs=1e-9)
+        now = energy(world)
+        assert now <= before + EXACT
+        before = now
+    assert rode
+
+
 # ------------------------------------------------------------------ slopes
 
 

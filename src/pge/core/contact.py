@@ -299,17 +299,6 @@ def _wedged(S, r, s, ax, ay, height, loose, t):
     return False
 
 
-@njit(cache=True, inline="always")
-def _lifts_support(F, I, s, mx, my, vn):
-    """True if the plastic impulse stopping a rider's normal velocity ``vn`` along the unit
-    normal ``m`` (from ``s`` towards the rider) would pull the resting support ``s`` away from
-    its own support by more than rounding: the impulse on ``s`` is ``vn m / (k_r + k_s)``."""
-    if I[s, L.SUPPORT] < 0:
-        return False
-    along = mx * F[s, L.REST_NX] + my * F[s, L.REST_NY]
-    return vn * along > 1e-12 * abs(vn)
-
-
 @njit(cache=True)
 def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
     """Let rider ``r`` come to rest on ``s`` after a bounce, if it qualifies.
@@ -351,10 +340,6 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
         # body wedged between two would swap supports for ever at one instant. It bounces
         # under the pivot rule instead.
         return False, count
-    if _lifts_support(F, I, s, mx, my, rel_vx * mx + rel_vy * my):
-        # The plastic impulse would pull a resting support off its own support, which it
-        # cannot share as a resting body; treated as immovable it would do work on the rider.
-        return False, count
     if I[r, L.KIND] != 0 and (F[r, L.OMEGA] != 0.0 or (owner == s and _on_one_corner(S, r, mx, my))):
         # A polygon on one corner rests only once turned flat (a still one too: balanced on a
         # corner it would never tip).
@@ -365,16 +350,18 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
         at = -rel_ax * my + rel_ay * mx
         if abs(vt) > _BALANCE_TOLERANCE * abs(vn) + 1e-300 or abs(at) > _BALANCE_TOLERANCE * abs(an):
             owner = CURVED_STEPPING
-    # Stop the relative normal motion with a plastic impulse, of which a support that can
-    # move along m takes its share (then what rests on it is let go first): coming to
-    # rest conserves momentum and never gains energy, even on a moving support.
+    # Stop the relative normal motion with a plastic impulse, of which a movable support takes
+    # its share (then what rests on it is let go first): coming to rest conserves momentum
+    # and never gains energy, even on a moving support. A resting support moves only across
+    # its own rest normal, whichever way the impulse points: its support takes the rest (a
+    # support taken as immovable while it slides would do work on the rider).
     vn = (F[r, L.VX] - F[s, L.VX]) * mx + (F[r, L.VY] - F[s, L.VY]) * my
     keep_s = I[s, L.SUPPORT] >= 0
     turns_s = not keep_s or I[s, L.KIND] == 0
     rsx = px - F[s, L.X]
     rsy = py - F[s, L.Y]
     k_s = 0.0
-    if I[s, L.FIXED] == 0 and not _lifts_support(F, I, s, mx, my, vn):
+    if I[s, L.FIXED] == 0:
         k_s = contact_response(F, s, keep_s, turns_s, rsx, rsy, mx, my, -my, mx)[0]
     k_r = F[r, L.INV_MASS]
     if k_s > 1e-12 * k_r and vn != 0.0:
