@@ -21,10 +21,10 @@ from numba import njit
 
 from pge.core import layout as L
 from pge.core.contact import (
-    lowest_along,
+    carry_or_release_riders,
     combine,
     detach,
-    carry_or_release_riders,
+    lowest_along,
     release_riders,
     resettle_riders,
     schedule_contact_event,
@@ -34,7 +34,7 @@ from pge.core.contact import (
 from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
 from pge.core.motion import advance, orient
-from pge.core.pivot import pivot, slow_neighbours_to_pay
+from pge.core.pivot import others_pay_for_lift, pivot
 from pge.core.predict import new_mark, place, predict
 from pge.core.response import apply_impulse, contact_response
 from pge.core.sleep import try_sleep, wake
@@ -371,7 +371,7 @@ def collide(S, a, b, feature, t):
     else:
         redone, kicked, owed = pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre)
         if owed:
-            paid, count = slow_neighbours_to_pay(S, a, b, pre, group, count, t)
+            paid, count = others_pay_for_lift(S, a, b, pre, group, count, t)
             if not paid:
                 S[13][L.S_UNPAID_LIFTS] += 1
         if redone >= 0.0:

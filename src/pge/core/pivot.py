@@ -102,7 +102,7 @@ def pivot(S, a, b, px, py, nx, ny, owner, restitution, mu, pre):
     which says how the normal turns (``press_rate``). Returns the
     new normal impulse, or -1.0 if the rule does not apply; whether the contact
     was lifted from (nearly) at rest; and whether that lift is still unpaid (the caller
-    may let the bodies touching the pair pay: ``slow_neighbours_to_pay``).
+    may let other bodies pay: ``others_pay_for_lift``).
     """
     F = S[0]
     I = S[1]
@@ -305,7 +305,7 @@ _LARGEST_PILE = 64
 
 
 @njit(cache=True)
-def slow_neighbours_to_pay(S, a, b, pre, out, count, t):
+def others_pay_for_lift(S, a, b, pre, out, count, t):
     """Pay for a lift that neither the pair's motion nor a move of the pair could pay for out of
     the kinetic energy of other bodies (``_payable``: a free body's motion, a resting circle's
     spin), taking it from as near the pair as can pay.
