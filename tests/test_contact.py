@@ -201,7 +201,6 @@ def test_stack_of_three_boxes_settles_and_stays_stacked(elasticity, widths, gap)
     assert world.overlaps(EXACT) == []
 
 
-@pytest.mark.xfail(strict=True, reason="KNOWN ENGINE BUG (issue 5 open): a rider's weight and friction do not load its support (one-way coupling): the riding box is sped up by friction while the box under it keeps its speed, so momentum and energy rise; tools/repro/repro_oneway_rider.py")
 def test_box_dropped_on_a_box_sliding_on_ice_is_dragged_along_keeping_momentum():
     """A box (m 1, friction 0.5) dropped with no horizontal speed onto a box (m 1) sliding at 2 m/s
     on a frictionless floor: only friction between the two acts horizontally, so their horizontal

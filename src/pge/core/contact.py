@@ -86,17 +86,35 @@ def relative_tangential(S, r, t):
     return vt, at, an
 
 
+@njit(cache=True, inline="always")
+def mark_pile(S, x):
+    """Note that the pile holding resting body ``x`` must be solved again before the event
+    ends (``pge.core.pile.settle_piles``): a rider arrived, left or changed on it."""
+    Q = S[4]
+    piles = S[19]
+    k = Q[L.PILES_N]
+    if k > 0 and piles[k - 1] == x:
+        return
+    if k < piles.shape[0]:
+        piles[k] = x
+        Q[L.PILES_N] = k + 1
+
+
 @njit(cache=True)
 def settle_acceleration(S, r, t):
     """Set resting rider ``r``'s acceleration from its free one, its support's and friction.
 
-    Returns False when the free accelerations no longer press the two
-    together (the caller then releases the rider).
+    This takes the support's acceleration as given: exact on an immovable
+    support; in a pile the whole pile is solved again before the event ends
+    (``pge.core.pile``), so that riders load their supports. Returns False
+    when the free accelerations no longer press the two together (the caller
+    then releases the rider).
     """
     F = S[0]
     I = S[1]
     Q = S[4]
     s = I[r, L.SUPPORT]
+    mark_pile(S, r)
     vt, at, an = relative_tangential(S, r, t)
     if not an < 0.0:
         return False
@@ -300,6 +318,76 @@ def _wedged(S, r, s, ax, ay, height, loose, t):
 
 
 @njit(cache=True)
+def base_of(I, x):
+    """The base of the pile holding resting body ``x``: the body of its chain of supports
+    that rests on an immovable one (``pge.core.pile``)."""
+    while I[I[x, L.SUPPORT], L.SUPPORT] >= 0:
+        x = I[x, L.SUPPORT]
+    return x
+
+
+@njit(cache=True)
+def presses_into_neighbour(S, p, dx, dy, accelerations, t):
+    """Whether resting body ``p``, moved along ``(dx, dy)``, would press into a body it touches
+    (within the rest height) and is not leaving, that cannot give way: fixed, asleep, or
+    resting in another pile. With ``accelerations``, ``(dx, dy)`` is an acceleration (the
+    neighbour's own is taken off) and ``p`` must not be leaving the neighbour; else it is a
+    change of ``p``'s velocity, after which ``p`` must not be leaving it.
+
+    Such a neighbour pushes back with whatever force it takes (a wedge on the floor pushed
+    into a wall by its rider stays put), which neither a pile's solve nor a rest's plastic
+    impulse knows of: the caller holds ``p`` instead."""
+    F = S[0]
+    I = S[1]
+    scratch = S[15]
+    s = I[p, L.SUPPORT]
+    base = base_of(I, p)
+    height = S[3][L.REST_HEIGHT] * F[p, L.REACH]
+    _, _, pvx, pvy = state_at(F, p, t)
+    n = gather(S, p)
+    for k in range(n):
+        j = scratch[k]
+        if j == s or I[j, L.SUPPORT] == p or not grounded(I, j):
+            continue
+        if I[j, L.SUPPORT] >= 0 and base_of(I, j) == base:
+            continue
+        nx, ny, depth = nearest_normal(S, p, j)
+        if depth < -height:
+            continue
+        press = dx * nx + dy * ny
+        if accelerations:
+            press -= F[j, L.AX] * nx + F[j, L.AY] * ny
+        if not press < 0.0:
+            continue
+        _, _, jvx, jvy = state_at(F, j, t)
+        vx = pvx if accelerations else pvx + dx
+        vy = pvy if accelerations else pvy + dy
+        if (vx - jvx) * nx + (vy - jvy) * ny <= STILL_ULPS * (math.hypot(vx, vy) + math.hypot(jvx, jvy)):
+            return True
+    return False
+
+
+@njit(cache=True)
+def _leaving_edge_end(S, r, s, owner, edge):
+    """Whether the circle of the pair ``r``, ``s`` (the one not owning the carrying edge) lies
+    at an end of ``owner``'s edge ``edge`` to rounding (1e-12 of its length) and moves off
+    it. Both bodies are at the same reference time."""
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    other = s if owner == r else r
+    if I[other, L.KIND] != 0:
+        return False
+    row = I[owner, L.OUTLINE_START] + edge
+    tx = -OL[row, 3]
+    ty = OL[row, 2]
+    u = (F[other, L.X] - F[owner, L.X] - OL[row, 0]) * tx + (F[other, L.Y] - F[owner, L.Y] - OL[row, 1]) * ty
+    along = (F[other, L.VX] - F[owner, L.VX]) * tx + (F[other, L.VY] - F[owner, L.VY]) * ty
+    length = OL[row, 4]
+    return (u <= 1e-12 * length and along < 0.0) or (u >= (1.0 - 1e-12) * length and along > 0.0)
+
+
+@njit(cache=True)
 def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
     """Let rider ``r`` come to rest on ``s`` after a bounce, if it qualifies.
 
@@ -340,6 +428,11 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
         # body wedged between two would swap supports for ever at one instant. It bounces
         # under the pivot rule instead.
         return False, count
+    if owner >= 0 and I[s, L.FIXED] == 0 and _leaving_edge_end(S, r, s, owner, edge):
+        # A circle at the very end of a movable support's edge, moving off: it would leave at
+        # once, which unloads the support, whose changed acceleration may press the circle
+        # back onto the edge's end at the same instant, for ever. It bounces (the pivot rule).
+        return False, count
     if I[r, L.KIND] != 0 and (F[r, L.OMEGA] != 0.0 or (owner == s and _on_one_corner(S, r, mx, my))):
         # A polygon on one corner rests only once turned flat (a still one too: balanced on a
         # corner it would never tip).
@@ -363,6 +456,14 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
     k_s = 0.0
     if I[s, L.FIXED] == 0:
         k_s = contact_response(F, s, keep_s, turns_s, rsx, rsy, mx, my, -my, mx)[0]
+        if keep_s:
+            # The impulse would move s across its own rest normal, along vn m: not into a
+            # neighbour that holds it (else s bounces off it, letting r go, for ever).
+            sx = -F[s, L.REST_NY]
+            sy = F[s, L.REST_NX]
+            along = F[s, L.INV_MASS] * vn / (F[r, L.INV_MASS] + k_s) * (mx * sx + my * sy)
+            if along != 0.0 and presses_into_neighbour(S, s, along * sx, along * sy, False, t):
+                k_s = 0.0
     k_r = F[r, L.INV_MASS]
     if k_s > 1e-12 * k_r and vn != 0.0:
         j = -vn / (k_r + k_s)
@@ -401,12 +502,15 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
 
 @njit(cache=True, inline="always")
 def detach(S, r):
-    """Take rider ``r`` off its support's rider list and give it its free acceleration."""
+    """Take rider ``r`` off its support's rider list and give it its free acceleration
+    (a resting support is marked: its pile lost a load)."""
     F = S[0]
     I = S[1]
     s = I[r, L.SUPPORT]
     if s < 0:
         return
+    if I[s, L.SUPPORT] >= 0:
+        mark_pile(S, s)
     before = I[r, L.RIDER_PREV]
     after = I[r, L.RIDER_NEXT]
     if before >= 0:

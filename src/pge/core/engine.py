@@ -2,7 +2,7 @@
 
 State is one tuple ``S`` of arrays (see ``pge.core.state.EngineState``):
 ``(F, I, OL, P, Q, head, static_start, static_items, heap, slot_time,
-slot_key, slot_data, free, stats, out, scratch, pending, group, OB)``; column meanings
+slot_key, slot_data, free, stats, out, scratch, pending, group, OB, piles)``; column meanings
 are in ``pge.core.layout``.
 
 One event (``run``): pop the earliest queue entry; skip it if stale (a
@@ -24,7 +24,9 @@ from pge.core.contact import (
     carry_or_release_riders,
     combine,
     detach,
+    grounded,
     lowest_along,
+    presses_into_neighbour,
     release_riders,
     resettle_riders,
     schedule_contact_event,
@@ -34,6 +36,7 @@ from pge.core.contact import (
 from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
 from pge.core.motion import advance, orient
+from pge.core.pile import settle_piles
 from pge.core.pivot import others_pay_for_lift, pivot
 from pge.core.predict import new_mark, place, predict
 from pge.core.response import apply_impulse, contact_response
@@ -109,7 +112,8 @@ def touch_group(S, ids, count):
 @njit(cache=True)
 def release_body(S, i, t, out):
     """Wake body ``i``'s island (if asleep) or, for a fixed body, the islands near it;
-    release it from its support (if resting) and every body resting on it.
+    release it from its support (if resting) and every body resting on it; the pile it
+    leaves is solved again.
 
     The bodies whose motion changes are written to ``out``; returns how many.
     Python calls this before changing a body through the API.
@@ -128,7 +132,8 @@ def release_body(S, i, t, out):
         stats[L.S_RELEASES] += 1
         out[count] = i
         count += 1
-    return release_riders(S, i, out, count, t)
+    count = release_riders(S, i, out, count, t)
+    return settle_piles(S, out, count, t)
 
 
 # ------------------------------------------------------------------- response
@@ -229,6 +234,37 @@ def _keeps_resting(F, I, OL, x, dx, dy, px, py, approach, rest_height):
 
 
 @njit(cache=True)
+def _laden_knock(S, a, b, keep_a, keep_b, bounce):
+    """Whether a resting body carrying riders knocks into one that cannot give way (fixed,
+    asleep or resting) so slowly that it would bounce off slower than the pivot rule's lift
+    speed: the knock is then plastic. Each bounce would let its riders go, and their coming
+    to rest again push it back, a Zeno run at one instant."""
+    F = S[0]
+    I = S[1]
+    for x, y, keep in ((a, b, keep_a), (b, a, keep_b)):
+        if keep and I[x, L.RIDER_HEAD] >= 0 and grounded(I, y):
+            accel = math.hypot(F[x, L.FREE_AX], F[x, L.FREE_AY])
+            if bounce * bounce < 2.0 * accel * S[3][L.REST_HEIGHT] * F[x, L.REACH]:
+                return True
+    return False
+
+
+@njit(cache=True)
+def _held(S, x, jx, jy, t):
+    """Whether resting body ``x``, given the impulse ``(jx, jy)`` (of which its support takes
+    the part along its rest normal), would move into a neighbour that cannot give way."""
+    F = S[0]
+    mx = F[x, L.REST_NX]
+    my = F[x, L.REST_NY]
+    along = jx * mx + jy * my
+    dvx = (jx - along * mx) * F[x, L.INV_MASS]
+    dvy = (jy - along * my) * F[x, L.INV_MASS]
+    if dvx == 0.0 and dvy == 0.0:
+        return False
+    return presses_into_neighbour(S, x, dvx, dvy, False, t)
+
+
+@njit(cache=True)
 def contact_geometry(S, a, b, feature):
     """Contact point and unit normal (from b towards a) of ``a`` and ``b`` at their common
     reference time, with ``feature`` from the kernel; also the edge carrying a flat
@@ -316,9 +352,15 @@ def collide(S, a, b, feature, t):
         if I[a, L.SUPPORT] >= 0 and not keep_a:
             detach(S, a)
             S[13][L.S_RELEASES] += 1
+            group[count] = a
+            count += 1
         if I[b, L.SUPPORT] >= 0 and not keep_b:
             detach(S, b)
             S[13][L.S_RELEASES] += 1
+            group[count] = b
+            count += 1
+        if _laden_knock(S, a, b, keep_a, keep_b, -normal_speed * restitution):
+            restitution = 0.0
         turns_a = not keep_a or I[a, L.KIND] == CIRCLE
         turns_b = not keep_b or I[b, L.KIND] == CIRCLE
         ann, ant, att = contact_response(F, a, keep_a, turns_a, rax, ray, nx, ny, tx, ty)
@@ -330,10 +372,33 @@ def collide(S, a, b, feature, t):
             )
             jx = impulse * nx + tangential * tx
             jy = impulse * ny + tangential * ty
-            if apply_impulse(F, a, keep_a, turns_a, jx, jy, rax, ray):
+            # A resting body the impulse would push into a neighbour that holds it (a wedge
+            # against a wall) does not move: the neighbour pushes back. Moved, it would bounce
+            # off the neighbour and let go of its riders, for ever at one instant.
+            # Held, it may not move against the push (it would do work on the other body).
+            # It still turns.
+            held_a = keep_a and F[a, L.VX] * jx + F[a, L.VY] * jy >= 0.0 and _held(S, a, jx, jy, t)
+            held_b = keep_b and F[b, L.VX] * jx + F[b, L.VY] * jy <= 0.0 and _held(S, b, -jx, -jy, t)
+            if held_a or held_b:
+                if held_a:
+                    ann, ant, att = contact_response(F, a, keep_a, turns_a, rax, ray, nx, ny, tx, ty, False)
+                if held_b:
+                    bnn, bnt, btt = contact_response(F, b, keep_b, turns_b, rbx, rby, nx, ny, tx, ty, False)
+                knn = ann + bnn
+                ux = F[a, L.VX] - wa * ray - (F[b, L.VX] - wb * rby)
+                uy = F[a, L.VY] + wa * rax - (F[b, L.VY] + wb * rbx)
+                impulse = 0.0
+                tangential = 0.0
+                if knn > 0.0 and ux * nx + uy * ny < 0.0:
+                    impulse, tangential = contact_impulse(
+                        ux * nx + uy * ny, ux * tx + uy * ty, knn, ant + bnt, att + btt, restitution, mu
+                    )
+                jx = impulse * nx + tangential * tx
+                jy = impulse * ny + tangential * ty
+            if apply_impulse(F, a, keep_a, turns_a, jx, jy, rax, ray, not held_a):
                 group[count] = a
                 count += 1
-            if apply_impulse(F, b, keep_b, turns_b, -jx, -jy, rbx, rby):
+            if apply_impulse(F, b, keep_b, turns_b, -jx, -jy, rbx, rby, not held_b):
                 group[count] = b
                 count += 1
     # A speed that a run of impulses at one instant has shrunk below any meaning (a body
@@ -395,6 +460,7 @@ def collide(S, a, b, feature, t):
         if I[b, L.FIXED] == 0:
             group[count] = b
             count += 1
+    count = settle_piles(S, group, count, t)
     touch_group(S, group, count)
     out[L.OUT_TIME] = t
     out[L.OUT_A] = a
@@ -430,11 +496,13 @@ def contact_change(S, r, what, t):
         if settle_acceleration(S, r, t):
             # Its motion stays continuous: what rests on it keeps resting, re-settled.
             count = resettle_riders(S, r, dvx, dvy, True, group, count, t)
+            count = settle_piles(S, group, count, t)
             touch_group(S, group, count)
             return
         detach(S, r)
         S[13][L.S_RELEASES] += 1
     count = release_riders(S, r, group, count, t)
+    count = settle_piles(S, group, count, t)
     touch_group(S, group, count)
 
 

@@ -75,7 +75,8 @@ FRICTION_RULE = 8  # how two friction coefficients combine (codes as RULE)
 PENDING_N = 9  # bodies waiting in `pending` to be predicted
 PENDING_DONE = 10  # how many of them are done
 PENDING_MARK = 11  # pair-once mark of the current batch
-NQ = 12
+PILES_N = 12  # resting bodies in `piles` whose pile must be solved again before the event ends
+NQ = 13
 
 # ---- stats: int64 counters ---------------------------------------------------
 STAT_NAMES = (
@@ -102,6 +103,7 @@ STAT_NAMES = (
     "wakes",
     "tips",
     "far_payments",
+    "pile_solves",
 )
 (
     S_EVENTS,
@@ -127,8 +129,9 @@ STAT_NAMES = (
     S_WAKES,
     S_TIPS,
     S_FAR_PAYMENTS,
-) = range(23)
-NSTATS = 23
+    S_PILE_SOLVES,
+) = range(24)
+NSTATS = 24
 
 # ---- event kinds (high bits of the heap key; equal times pop in this order) --
 COLLISION, CONTACT_EVENT, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3, 4

@@ -15,12 +15,13 @@ from pge.core import layout as L
 
 
 @njit(cache=True, inline="always")
-def contact_response(F, x, keep, turns, rx, ry, nx, ny, tx, ty):
+def contact_response(F, x, keep, turns, rx, ry, nx, ny, tx, ty, moves=True):
     """Body ``x``'s share ``(k_nn, k_nt, k_tt)`` of the contact-space inverse mass at lever
     arm ``(rx, ry)``, normal ``n`` and tangent ``t``; a body kept resting moves only
     across its rest normal, and turns only if ``turns`` (a resting circle spins freely:
-    its support pushes through its centre; a resting polygon's base is held flat)."""
-    m = F[x, L.INV_MASS]
+    its support pushes through its centre; a resting polygon's base is held flat). A body
+    that does not ``move`` (held by a neighbour) only turns."""
+    m = F[x, L.INV_MASS] if moves else 0.0
     inertia = F[x, L.INV_INERTIA] if turns else 0.0
     rn = rx * ny - ry * nx
     rt = rx * ty - ry * tx
@@ -37,10 +38,13 @@ def contact_response(F, x, keep, turns, rx, ry, nx, ny, tx, ty):
 
 
 @njit(cache=True, inline="always")
-def apply_impulse(F, x, keep, turns, jx, jy, rx, ry):
+def apply_impulse(F, x, keep, turns, jx, jy, rx, ry, moves=True):
     """Give body ``x`` the impulse ``(jx, jy)`` at lever arm ``(rx, ry)`` (see ``contact_response``
-    for ``keep`` and ``turns``); True if its motion changed."""
+    for ``keep``, ``turns`` and ``moves``); True if its motion changed."""
     dw = (rx * jy - ry * jx) * F[x, L.INV_INERTIA] if turns else 0.0
+    if not moves:
+        jx = 0.0
+        jy = 0.0
     if keep:
         mx = F[x, L.REST_NX]
         my = F[x, L.REST_NY]

@@ -46,6 +46,7 @@ class EngineState:
         self.scratch = np.zeros(capacity, dtype=np.int64)
         self.pending = np.zeros(4 * capacity + 16, dtype=np.int64)
         self.group = np.zeros(4 * capacity + 16, dtype=np.int64)
+        self.piles = np.zeros(4 * capacity + 16, dtype=np.int64)
         self._update_min_free()
         self.refresh()
 
@@ -71,6 +72,7 @@ class EngineState:
             self.pending,
             self.group,
             self.OB,
+            self.piles,
         )
 
     def _update_min_free(self) -> None:
@@ -99,6 +101,9 @@ class EngineState:
             pending[: self.pending.shape[0]] = self.pending
             self.pending = pending
             self.group = np.zeros(4 * capacity + 16, dtype=np.int64)
+            piles = np.zeros(4 * capacity + 16, dtype=np.int64)
+            piles[: self.piles.shape[0]] = self.piles
+            self.piles = piles
         index = self.n
         self.n += 1
         self._update_min_free()

@@ -1,0 +1,314 @@
+"""Piles: the accelerations of bodies resting on one another, solved together.
+
+A resting body has one support, which is immovable (fixed or asleep) or resting itself. The
+bodies resting directly on an immovable one are the *bases* of piles: a pile is a base and
+everything resting on it, directly or through others, a tree of riders. Resting bodies do
+not turn, so a pile is a tree of point masses joined by contacts, each with a fixed unit
+normal ``n`` (from the support towards the rider) and tangent ``t = (-n_y, n_x)``. A contact
+either *sticks* (the rider's acceleration is its support's) or *slides* (the relative
+acceleration lies along ``t``, and friction ``-mu N s t`` opposes the relative tangential
+velocity, of sign ``s``); its normal force ``N`` must be positive.
+
+``contact.settle_acceleration`` settles one rider against its support's acceleration as
+given, which is exact on an immovable support; but a rider's weight and friction also load
+its support (a box dropped on a box sliding on ice slows it down). Whenever a pile gains,
+loses or changes a rider, it is solved again here before the event ends.
+
+The solve is the articulated-body recursion over the tree. From the riders on top down to the
+base, each rider with all that rests on it answers its support's acceleration ``a`` with a
+contact force ``f = M a + c``: stuck, ``M`` is its articulated mass and ``c`` minus its
+articulated weight; sliding, ``f = N d`` with ``d = n - mu s t`` and ``N`` linear in ``a``,
+so ``M`` is rank one and not symmetric. Its support adds ``M`` to its own mass matrix and
+``-c`` to its own weight. From the base up, each body then gets its acceleration and contact
+force. A stuck contact that needs more friction than ``mu N`` starts sliding (against the
+friction it needed); a body that would accelerate into a neighbour that cannot give way is
+held to its support (the neighbour's reaction is not part of the pile); a contact that would pull (``N <= 0``), and a curved contact whose
+support would move, is released with all that rests on it; then the pile is solved again.
+Constraint forces do no work on a sticking or sliding contact (zero relative normal
+velocity) and friction only takes energy out, so a pile's energy can only fall.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from pge.core import layout as L
+from pge.core.contact import base_of, combine, detach, presses_into_neighbour, release_riders, settle_acceleration
+from pge.core.motion import advance, state_at
+
+_FINE, _SLIPS, _LETS_GO = 0, 1, 2
+
+
+@njit(cache=True)
+def _walk(I, base, order, parent, fill):
+    """Visit the pile on ``base`` support first (pre-order); return how many bodies it has.
+
+    With ``fill`` the bodies are written to ``order`` and, for each, the position of its
+    support in ``order`` to ``parent`` (-1 for the base). The walk keeps no stack: it climbs
+    back down through ``SUPPORT`` to the next sibling.
+    """
+    n = 1
+    if fill:
+        order[0] = base
+        parent[0] = -1
+    x = base
+    at = 0  # position of x in order
+    up = -1
+    while True:
+        head = I[x, L.RIDER_HEAD]
+        if head >= 0:
+            up = at
+            x = head
+        else:
+            while x != base and I[x, L.RIDER_NEXT] < 0:
+                x = I[x, L.SUPPORT]
+                if fill:
+                    at = parent[at]
+            if x == base:
+                return n
+            if fill:
+                up = parent[at]
+            x = I[x, L.RIDER_NEXT]
+        if fill:
+            order[n] = x
+            parent[n] = up
+        at = n
+        n += 1
+
+
+@njit(cache=True)
+def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
+    """Solve the pile for the contact modes in ``slide`` (0: stuck, else the sign of the
+    sliding), writing each body's acceleration to ``acc``. A ``held`` contact sticks whatever
+    friction it needs (a neighbour takes the rest).
+
+    Returns ``(k, what)``: the first contact (in ``order``, support first) that fails and
+    how (``_SLIPS``: stuck but needing more friction than it has, with the sign it slides
+    with in ``slide[k]``; ``_LETS_GO``: pulling, or curved on a moving support), or
+    ``(-1, _FINE)``.
+    """
+    mass = np.empty((n, 4))  # articulated mass matrix (row major) of each body with its riders
+    weight = np.empty((n, 2))  # articulated weight (force at zero acceleration)
+    for k in range(n):
+        p = order[k]
+        m = 1.0 / F[p, L.INV_MASS]
+        mass[k, 0] = m
+        mass[k, 1] = 0.0
+        mass[k, 2] = 0.0
+        mass[k, 3] = m
+        weight[k, 0] = m * F[p, L.FREE_AX]
+        weight[k, 1] = m * F[p, L.FREE_AY]
+    friction = np.empty(n)
+    for k in range(n):
+        p = order[k]
+        friction[k] = combine(F[p, L.FRICTION], F[I[p, L.SUPPORT], L.FRICTION], Q[L.FRICTION_RULE])
+    for k in range(n - 1, 0, -1):
+        p = order[k]
+        nx = F[p, L.REST_NX]
+        ny = F[p, L.REST_NY]
+        a00, a01, a10, a11 = mass[k, 0], mass[k, 1], mass[k, 2], mass[k, 3]
+        b0, b1 = weight[k, 0], weight[k, 1]
+        q = parent[k]
+        if slide[k] == 0:  # f = A a - b
+            mass[q, 0] += a00
+            mass[q, 1] += a01
+            mass[q, 2] += a10
+            mass[q, 3] += a11
+            weight[q, 0] += b0
+            weight[q, 1] += b1
+            continue
+        # Sliding: A (a + u t) = b + N d, two equations for u and N; N = g . (b - A a).
+        dx = nx + friction[k] * slide[k] * ny
+        dy = ny - friction[k] * slide[k] * nx
+        atx = -a00 * ny + a01 * nx
+        aty = -a10 * ny + a11 * nx
+        det = dx * aty - dy * atx
+        if not det > 0.0:
+            return k, _LETS_GO
+        gx = -aty / det
+        gy = atx / det
+        wx = gx * a00 + gy * a10  # N = g . b - w . a
+        wy = gx * a01 + gy * a11
+        gb = gx * b0 + gy * b1
+        mass[q, 0] -= dx * wx  # f = N d = (g . b) d - d (w . a)
+        mass[q, 1] -= dx * wy
+        mass[q, 2] -= dy * wx
+        mass[q, 3] -= dy * wy
+        weight[q, 0] -= dx * gb
+        weight[q, 1] -= dy * gb
+    for k in range(n):
+        p = order[k]
+        q = parent[k]
+        if q < 0:
+            aqx = F[ground, L.AX]
+            aqy = F[ground, L.AY]
+        else:
+            aqx = acc[q, 0]
+            aqy = acc[q, 1]
+        nx = F[p, L.REST_NX]
+        ny = F[p, L.REST_NY]
+        a00, a01, a10, a11 = mass[k, 0], mass[k, 1], mass[k, 2], mass[k, 3]
+        rx = weight[k, 0] - (a00 * aqx + a01 * aqy)  # the contact force's missing part: b - A a
+        ry = weight[k, 1] - (a10 * aqx + a11 * aqy)
+        if slide[k] == 0:
+            normal = -(rx * nx + ry * ny)
+            along = -(-rx * ny + ry * nx)
+            acc[k, 0] = aqx
+            acc[k, 1] = aqy
+            if not normal > 0.0:
+                return k, _LETS_GO
+            if held[k] == 0 and abs(along) > friction[k] * normal:
+                slide[k] = -1 if along > 0.0 else 1
+                return k, _SLIPS
+        else:
+            dx = nx + friction[k] * slide[k] * ny
+            dy = ny - friction[k] * slide[k] * nx
+            atx = -a00 * ny + a01 * nx
+            aty = -a10 * ny + a11 * nx
+            det = dx * aty - dy * atx
+            if not det > 0.0:
+                return k, _LETS_GO
+            u = (-dy * rx + dx * ry) / det
+            normal = (-aty * rx + atx * ry) / det
+            acc[k, 0] = aqx - u * ny
+            acc[k, 1] = aqy + u * nx
+            if not normal > 0.0:
+                return k, _LETS_GO
+        if I[p, L.EDGE_OWNER] < 0 and q >= 0:
+            # A curved contact rests only on a still support (contact.try_rest).
+            _, _, svx, svy = state_at(F, order[q], t)
+            if acc[q, 0] != 0.0 or acc[q, 1] != 0.0 or svx != 0.0 or svy != 0.0:
+                return k, _LETS_GO
+    return -1, _FINE
+
+
+@njit(cache=True)
+def _sliding_sign(F, I, x, t):
+    """The sign of resting body ``x``'s tangential velocity relative to its support (0: none)."""
+    s = I[x, L.SUPPORT]
+    _, _, rvx, rvy = state_at(F, x, t)
+    _, _, svx, svy = state_at(F, s, t)
+    vt = -(rvx - svx) * F[x, L.REST_NY] + (rvy - svy) * F[x, L.REST_NX]
+    if vt > 0.0:
+        return 1
+    if vt < 0.0:
+        return -1
+    return 0
+
+
+@njit(cache=True)
+def _settle_alone(S, base, t, out, count):
+    """A base with no riders (left): settled on its immovable support, exactly, by
+    ``settle_acceleration``; appended to ``out`` if its motion changed."""
+    F = S[0]
+    I = S[1]
+    ax = F[base, L.AX]
+    ay = F[base, L.AY]
+    mode = I[base, L.REST_MODE]
+    advance(F, base, t)
+    if not settle_acceleration(S, base, t):
+        detach(S, base)
+        S[13][L.S_RELEASES] += 1
+    elif F[base, L.AX] == ax and F[base, L.AY] == ay and I[base, L.REST_MODE] == mode:
+        return count
+    out[count] = base
+    return count + 1
+
+
+@njit(cache=True)
+def settle_pile(S, base, t, out, count):
+    """Solve the pile on ``base`` at ``t`` and give its bodies their accelerations and contact
+    modes; release the riders that let go. The bodies whose motion changed are advanced to
+    ``t`` and appended to ``out`` from ``count`` (all of the pile when any changed); returns
+    the new count."""
+    F = S[0]
+    I = S[1]
+    Q = S[4]
+    stats = S[13]
+    none = np.empty(0, dtype=np.int64)
+    while True:
+        n = _walk(I, base, none, none, False)
+        if n < 2:
+            return _settle_alone(S, base, t, out, count)
+        order = np.empty(n, dtype=np.int64)
+        parent = np.empty(n, dtype=np.int64)
+        _walk(I, base, order, parent, True)
+        ground = I[base, L.SUPPORT]
+        slide = np.empty(n, dtype=np.int64)
+        for k in range(n):
+            slide[k] = _sliding_sign(F, I, order[k], t)
+        held = np.zeros(n, dtype=np.int64)
+        acc = np.empty((n, 2))
+        stats[L.S_PILE_SOLVES] += 1
+        while True:
+            k, what = _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t)
+            while what == _SLIPS:  # each pass turns one stuck contact to sliding: at most n
+                k, what = _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t)
+            if what != _FINE:
+                break
+            pushed = -1
+            for k in range(n):
+                if held[k] == 0 and (acc[k, 0] != 0.0 or acc[k, 1] != 0.0):
+                    if presses_into_neighbour(S, order[k], acc[k, 0], acc[k, 1], True, t):
+                        pushed = k
+                        break
+            if pushed < 0:
+                break
+            held[pushed] = 1  # each member at most once
+            slide[pushed] = 0
+        if what == _LETS_GO:
+            x = order[k]
+            advance(F, x, t)
+            detach(S, x)
+            stats[L.S_RELEASES] += 1
+            out[count] = x
+            count += 1
+            count = release_riders(S, x, out, count, t)
+            if x == base:
+                return count
+            continue
+        changed = False
+        for k in range(n):
+            p = order[k]
+            mode = L.STUCK if slide[k] == 0 else L.SLIDING
+            if F[p, L.AX] != acc[k, 0] or F[p, L.AY] != acc[k, 1] or I[p, L.REST_MODE] != mode:
+                changed = True
+        if not changed:
+            return count
+        for k in range(n):
+            p = order[k]
+            advance(F, p, t)
+            F[p, L.AX] = acc[k, 0]
+            F[p, L.AY] = acc[k, 1]
+            I[p, L.REST_MODE] = L.STUCK if slide[k] == 0 else L.SLIDING
+            out[count] = p
+            count += 1
+        return count
+
+
+@njit(cache=True)
+def settle_piles(S, out, count, t):
+    """Solve again, once each, the piles marked during this event (``contact.mark_pile``);
+    the bodies whose motion changed are appended to ``out`` from ``count``. Returns the new
+    count."""
+    I = S[1]
+    Q = S[4]
+    piles = S[19]
+    stamp = Q[L.STAMP_COUNTER] + 1  # a fresh gather stamp marks the piles solved
+    Q[L.STAMP_COUNTER] = stamp
+    k = 0
+    while k < Q[L.PILES_N]:  # a solve that releases a rider marks its support's pile again
+        x = piles[k]
+        k += 1
+        if I[x, L.SUPPORT] < 0 or I[x, L.ALIVE] == 0:
+            continue
+        base = base_of(I, x)
+        if I[base, L.STAMP] == stamp:
+            continue
+        I[base, L.STAMP] = stamp
+        count = settle_pile(S, base, t, out, count)
+    Q[L.PILES_N] = 0
+    return count
