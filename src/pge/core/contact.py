@@ -454,7 +454,7 @@ def try_rest(S, r, s, mx, my, owner, edge, px, py, t, out, count):
     rsx = px - F[s, L.X]
     rsy = py - F[s, L.Y]
     k_s = 0.0
-    if I[s, L.FIXED] == 0:
+    if I[s, L.FIXED] == 0 and owner >= 0:  # a curved rest keeps its support still
         k_s = contact_response(F, s, keep_s, turns_s, rsx, rsy, mx, my, -my, mx)[0]
         if keep_s:
             # The impulse would move s across its own rest normal, along vn m: not into a

@@ -22,8 +22,10 @@ so ``M`` is rank one and not symmetric. Its support adds ``M`` to its own mass m
 ``-c`` to its own weight. From the base up, each body then gets its acceleration and contact
 force. A stuck contact that needs more friction than ``mu N`` starts sliding (against the
 friction it needed); a body that would accelerate into a neighbour that cannot give way is
-held to its support (the neighbour's reaction is not part of the pile); a contact that would pull (``N <= 0``), and a curved contact whose
-support would move, is released with all that rests on it; then the pile is solved again.
+held to its support (the neighbour's reaction is not part of the pile), and so is a still
+support under a curved contact (a curved rest needs a still support; it would slip under
+the load); a contact that would pull (``N <= 0``), and a curved contact on a moving support,
+is released with all that rests on it; then the pile is solved again.
 Constraint forces do no work on a sticking or sliding contact (zero relative normal
 velocity) and friction only takes energy out, so a pile's energy can only fall.
 """
@@ -39,7 +41,7 @@ from pge.core import layout as L
 from pge.core.contact import base_of, combine, detach, presses_into_neighbour, release_riders, settle_acceleration
 from pge.core.motion import advance, state_at
 
-_FINE, _SLIPS, _LETS_GO = 0, 1, 2
+_FINE, _SLIPS, _LETS_GO, _CURVED = 0, 1, 2, 3
 
 
 @njit(cache=True)
@@ -87,8 +89,8 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
 
     Returns ``(k, what)``: the first contact (in ``order``, support first) that fails and
     how (``_SLIPS``: stuck but needing more friction than it has, with the sign it slides
-    with in ``slide[k]``; ``_LETS_GO``: pulling, or curved on a moving support), or
-    ``(-1, _FINE)``.
+    with in ``slide[k]``; ``_LETS_GO``: pulling; ``_CURVED``: curved on a support that would
+    move), or ``(-1, _FINE)``.
     """
     mass = np.empty((n, 4))  # articulated mass matrix (row major) of each body with its riders
     weight = np.empty((n, 2))  # articulated weight (force at zero acceleration)
@@ -181,7 +183,7 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
             # A curved contact rests only on a still support (contact.try_rest).
             _, _, svx, svy = state_at(F, order[q], t)
             if acc[q, 0] != 0.0 or acc[q, 1] != 0.0 or svx != 0.0 or svy != 0.0:
-                return k, _LETS_GO
+                return k, _CURVED
     return -1, _FINE
 
 
@@ -245,8 +247,18 @@ def settle_pile(S, base, t, out, count):
         stats[L.S_PILE_SOLVES] += 1
         while True:
             k, what = _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t)
-            while what == _SLIPS:  # each pass turns one stuck contact to sliding: at most n
-                k, what = _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t)
+            if what == _SLIPS:  # each pass turns one stuck contact to sliding: at most n
+                continue
+            if what == _CURVED:
+                # A curved rest needs a still support: a still one is held (it would slip
+                # under the load), a moving one lets the rider go.
+                q = parent[k]
+                _, _, qvx, qvy = state_at(F, order[q], t)
+                if held[q] == 0 and qvx == 0.0 and qvy == 0.0:
+                    held[q] = 1
+                    slide[q] = 0
+                    continue
+                what = _LETS_GO
             if what != _FINE:
                 break
             pushed = -1
