@@ -1,4 +1,4 @@
-"""A rider does not load its support (one-way coupling): found 2026-11-22 while tracing energy
+"""A rider did not load its support (one-way coupling): found 2026-11-22 while tracing energy
 seeds 120, 173 and 338 of ``survey.py energy --gravity``, which gain energy between events, not
 at a collision.
 
@@ -7,7 +7,8 @@ friction 0.5) is dropped onto it with no horizontal speed. Friction between them
 top box up and slow the bottom one down, keeping the horizontal momentum (2 kg m/s: the floor
 pushes only vertically) and losing energy. The engine speeds the top box up but does not slow the
 bottom one while the top one rides it, so the momentum and the energy rise until the top box slides
-off its back. Expected (once fixed): momentum stays 2.0 and the energy never rises.
+off its back (2.0 -> 2.41 kg m/s, +0.18 J in 0.08 s). Fixed the same day by solving each pile
+together (pge/core/pile.py): the momentum stays 2.0 and the energy never rises.
 """
 from pge import World
 
