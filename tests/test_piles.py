@@ -179,3 +179,25 @@ def test_a_box_dropped_on_a_box_sliding_on_ice_keeps_the_horizontal_momentum(spe
         assert now <= before + 1e-12 * (1.0 + abs(before)), event
         before = now
     assert met > 0
+
+
+# ------------------------------------------------------------------ surveyed scenes
+
+
+@pytest.mark.parametrize(
+    "seed, count",
+    [
+        (109, 10),  # a ball came to rest on a still ball that then slipped under it (a curved rest
+        (178, 10),  # on a moving support), was let go and landed again, for ever at one instant
+        (766, 6),  # a ball on the face of a box sliding with friction 0.96: no sliding motion fits
+        (616, 6),  # (Painleve), the box was let go and fell back, for ever; now it sticks at once
+    ],
+)
+def test_surveyed_piles_that_stormed_run_on_gaining_no_energy(seed, count):
+    """Scenes of ``survey.py energy --gravity`` (spinning scenes, friction, inelastic) that ended in the
+    event-storm error with the first pile solve (2026-11-22) run on, and no collision gains energy."""
+    from test_rotation import guarded, run_energy_scene
+
+    result = guarded(run_energy_scene, seed, count, True)
+    assert result["first_bad"] is None, f"energy gain {result['first_bad']}"
+    assert result["collisions"] > 400

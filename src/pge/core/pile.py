@@ -21,7 +21,9 @@ articulated weight; sliding, ``f = N d`` with ``d = n - mu s t`` and ``N`` linea
 so ``M`` is rank one and not symmetric. Its support adds ``M`` to its own mass matrix and
 ``-c`` to its own weight. From the base up, each body then gets its acceleration and contact
 force. A stuck contact that needs more friction than ``mu N`` starts sliding (against the
-friction it needed); a body that would accelerate into a neighbour that cannot give way is
+friction it needed; where friction is so strong that no sliding motion fits, Painleve's paradox,
+the base sticks at once, the pile carried along, if that takes energy out); a body that would
+accelerate into a neighbour that cannot give way is
 held to its support (the neighbour's reaction is not part of the pile), and so is a still
 support under a curved contact (a curved rest needs a still support; it would slip under
 the load); a contact that would pull (``N <= 0``), and a curved contact on a moving support,
@@ -41,7 +43,7 @@ from pge.core import layout as L
 from pge.core.contact import base_of, combine, detach, presses_into_neighbour, release_riders, settle_acceleration
 from pge.core.motion import advance, state_at
 
-_FINE, _SLIPS, _LETS_GO, _CURVED = 0, 1, 2, 3
+_FINE, _SLIPS, _LETS_GO, _CURVED, _JAMS = 0, 1, 2, 3, 4
 
 
 @njit(cache=True)
@@ -90,7 +92,8 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
     Returns ``(k, what)``: the first contact (in ``order``, support first) that fails and
     how (``_SLIPS``: stuck but needing more friction than it has, with the sign it slides
     with in ``slide[k]``; ``_LETS_GO``: pulling; ``_CURVED``: curved on a support that would
-    move), or ``(-1, _FINE)``.
+    move; ``_JAMS``: sliding with friction so strong that no sliding motion fits, as in
+    Painleve's paradox), or ``(-1, _FINE)``.
     """
     mass = np.empty((n, 4))  # articulated mass matrix (row major) of each body with its riders
     weight = np.empty((n, 2))  # articulated weight (force at zero acceleration)
@@ -129,7 +132,7 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
         aty = -a10 * ny + a11 * nx
         det = dx * aty - dy * atx
         if not det > 0.0:
-            return k, _LETS_GO
+            return k, _JAMS
         gx = -aty / det
         gy = atx / det
         wx = gx * a00 + gy * a10  # N = g . b - w . a
@@ -172,7 +175,7 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
             aty = -a10 * ny + a11 * nx
             det = dx * aty - dy * atx
             if not det > 0.0:
-                return k, _LETS_GO
+                return k, _JAMS
             u = (-dy * rx + dx * ry) / det
             normal = (-aty * rx + atx * ry) / det
             acc[k, 0] = aqx - u * ny
@@ -185,6 +188,34 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
             if acc[q, 0] != 0.0 or acc[q, 1] != 0.0 or svx != 0.0 or svy != 0.0:
                 return k, _CURVED
     return -1, _FINE
+
+
+@njit(cache=True)
+def _jam(F, I, order, n, t):
+    """Stop the pile's base sliding on its immovable support at ``t``, the whole pile taking
+    the same change of velocity (so that every contact above keeps its relative motion), if
+    that does not raise the pile's kinetic energy; True if it stopped."""
+    base = order[0]
+    tx = -F[base, L.REST_NY]
+    ty = F[base, L.REST_NX]
+    _, _, vx, vy = state_at(F, base, t)
+    slip = vx * tx + vy * ty
+    dvx = -slip * tx
+    dvy = -slip * ty
+    change = 0.0
+    for k in range(n):
+        p = order[k]
+        m = 1.0 / F[p, L.INV_MASS]
+        _, _, px, py = state_at(F, p, t)
+        change += m * (px * dvx + py * dvy + 0.5 * (dvx * dvx + dvy * dvy))
+    if not change <= 0.0:
+        return False
+    for k in range(n):
+        p = order[k]
+        advance(F, p, t)
+        F[p, L.VX] += dvx
+        F[p, L.VY] += dvy
+    return True
 
 
 @njit(cache=True)
@@ -243,12 +274,23 @@ def settle_pile(S, base, t, out, count):
         for k in range(n):
             slide[k] = _sliding_sign(F, I, order[k], t)
         held = np.zeros(n, dtype=np.int64)
+        jolted = False
         acc = np.empty((n, 2))
         stats[L.S_PILE_SOLVES] += 1
         while True:
             k, what = _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t)
             if what == _SLIPS:  # each pass turns one stuck contact to sliding: at most n
                 continue
+            if what == _JAMS:
+                # No sliding motion fits (Painleve): the base sticks at once on its immovable
+                # support, all the pile carried along with it, if that takes energy out; else
+                # (and above the base) the contact lets go.
+                if k == 0 and _jam(F, I, order, n, t):
+                    jolted = True
+                    slide[0] = 0
+                    held[0] = 1
+                    continue
+                what = _LETS_GO
             if what == _CURVED:
                 # A curved rest needs a still support: a still one is held (it would slip
                 # under the load), a moving one lets the rider go.
@@ -288,7 +330,7 @@ def settle_pile(S, base, t, out, count):
             mode = L.STUCK if slide[k] == 0 else L.SLIDING
             if F[p, L.AX] != acc[k, 0] or F[p, L.AY] != acc[k, 1] or I[p, L.REST_MODE] != mode:
                 changed = True
-        if not changed:
+        if not changed and not jolted:
             return count
         for k in range(n):
             p = order[k]
