@@ -32,7 +32,7 @@ import traceback
 
 import numpy as np
 import pytest
-from hypothesis import Phase, assume, given, settings
+from hypothesis import Phase, assume, example, given, settings
 from hypothesis import strategies as st
 from strategies import (
     TAU,
@@ -857,6 +857,7 @@ def test_a_lift_the_pile_cannot_pay_is_paid_by_the_richest_bodies_of_the_world()
 
 @SCENE_SETTINGS
 @given(seed=st.integers(0, 2**32 - 1), count=st.integers(5, 12))
+@example(seed=3325, count=5)  # a slide chosen under old loads, driven by its friction
 def test_energy_never_increases_at_collisions_under_gravity(seed, count):
     """Under gravity, kinetic plus potential energy never rises at a collision by more than 1e-12 of
     the scene's energy scale (its initial energy plus sum m g x the box height)."""

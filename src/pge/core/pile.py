@@ -233,6 +233,39 @@ def _sliding_sign(F, I, x, t):
 
 
 @njit(cache=True)
+def _driven_by_friction(F, I, ground, order, parent, n, slide, acc, t):
+    """The first contact (in ``order``) that slides from rest against the direction it is
+    accelerating in, or -1. Its friction, pointing against the slide, would push it along
+    and do positive work: the slide's direction is wrong."""
+    for k in range(n):
+        if slide[k] == 0 or _sliding_sign(F, I, order[k], t) != 0:
+            continue
+        q = parent[k]
+        aqx = F[ground, L.AX] if q < 0 else acc[q, 0]
+        aqy = F[ground, L.AY] if q < 0 else acc[q, 1]
+        p = order[k]
+        along = -(acc[k, 0] - aqx) * F[p, L.REST_NY] + (acc[k, 1] - aqy) * F[p, L.REST_NX]
+        if along * slide[k] < 0.0:
+            return k
+    return -1
+
+
+@njit(cache=True)
+def _restart_slips(F, I, order, n, held, slide, t):
+    """Set every contact's mode back to what its motion says (sliding with its relative
+    velocity's sign, stuck when it has none; a ``held`` one stuck), after a hold changed the
+    pile's loads.
+
+    A contact found to slip in an earlier pass slid from rest in the direction the old loads
+    pulled it; under the new ones that direction can be wrong, and friction would then drive
+    the slide instead of opposing it (a wedge on the floor, its rider held against the floor,
+    slid off from rest with friction as its engine: energy seed 3325). Each hold is made once,
+    so the passes stay bounded."""
+    for k in range(n):
+        slide[k] = 0 if held[k] != 0 else _sliding_sign(F, I, order[k], t)
+
+
+@njit(cache=True)
 def _settle_alone(S, base, t, out, count):
     """A base with no riders (left): settled on its immovable support, exactly, by
     ``settle_acceleration``; appended to ``out`` if its motion changed."""
@@ -298,11 +331,18 @@ def settle_pile(S, base, t, out, count):
                 _, _, qvx, qvy = state_at(F, order[q], t)
                 if held[q] == 0 and qvx == 0.0 and qvy == 0.0:
                     held[q] = 1
-                    slide[q] = 0
+                    _restart_slips(F, I, order, n, held, slide, t)
                     continue
                 what = _LETS_GO
             if what != _FINE:
                 break
+            backwards = _driven_by_friction(F, I, ground, order, parent, n, slide, acc, t)
+            if backwards >= 0:
+                # No mode of this contact fits (the solve chose its slide under other loads):
+                # it sticks, which does no work, whatever friction that takes.
+                held[backwards] = 1
+                _restart_slips(F, I, order, n, held, slide, t)
+                continue
             pushed = -1
             for k in range(n):
                 if held[k] == 0 and (acc[k, 0] != 0.0 or acc[k, 1] != 0.0):
@@ -312,7 +352,7 @@ def settle_pile(S, base, t, out, count):
             if pushed < 0:
                 break
             held[pushed] = 1  # each member at most once
-            slide[pushed] = 0
+            _restart_slips(F, I, order, n, held, slide, t)
         if what == _LETS_GO:
             x = order[k]
             advance(F, x, t)
