@@ -838,11 +838,11 @@ def test_surveyed_scenes_where_a_lift_went_unpaid_gain_no_energy(seed):
 
 
 def test_a_lift_the_pile_cannot_pay_is_paid_by_the_richest_bodies_of_the_world():
-    """Energy seed 170 (10 bodies, gravity, friction) settles into piles whose free bodies have less
+    """Energy seed 155 (10 bodies, gravity, friction) settles into piles whose free bodies have less
     kinetic energy than the pivot rule's lift gives: the lift is paid by the richest bodies of the
-    world (``stats['far_payments']``), here two nearly still free polygons and a resting ball's
-    spin, and none goes unpaid."""
-    world, _, bodies = build_spinning_scene(170, 10, elastic=False, gravity=True, friction=True, frame_rate=None)
+    world (``stats['far_payments']``), and none goes unpaid. (Seed 170 did so until balls rolled,
+    2026-12-01; its piles now settle without one.)"""
+    world, _, bodies = build_spinning_scene(155, 10, elastic=False, gravity=True, friction=True, frame_rate=None)
     masses = np.array([b.mass for b in bodies])
     before = mechanical_energy(world, bodies, masses)
     scale = before + G * masses.sum()

@@ -133,7 +133,8 @@ class Body:
     def angle(self) -> float:
         """Orientation in radians, anticlockwise, at the world's current time."""
         row, world = self._row()
-        return float(row[L.ANGLE] + row[L.OMEGA] * (world.time - row[L.T0]))
+        dt = world.time - row[L.T0]
+        return float(row[L.ANGLE] + (row[L.OMEGA] + 0.5 * row[L.ALPHA] * dt) * dt)
 
     @angle.setter
     def angle(self, value) -> None:
@@ -142,8 +143,8 @@ class Body:
     @property
     def angular_velocity(self) -> float:
         """Angular velocity in radians per second, anticlockwise (zero while fixed)."""
-        row, _ = self._row()
-        return float(row[L.OMEGA])
+        row, world = self._row()
+        return float(row[L.OMEGA] + row[L.ALPHA] * (world.time - row[L.T0]))
 
     @angular_velocity.setter
     def angular_velocity(self, value) -> None:

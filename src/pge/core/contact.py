@@ -30,7 +30,7 @@ from numba import njit
 
 from pge.core import layout as L
 from pge.core.grid import gather
-from pge.core.motion import advance, orient, state_at
+from pge.core.motion import advance, orient, spin_at, state_at
 from pge.core.overlap import nearest_normal, overlap_depth
 from pge.core.predict import STILL_ULPS
 from pge.core.queue import push
@@ -87,6 +87,41 @@ def relative_tangential(S, r, t):
 
 
 @njit(cache=True, inline="always")
+def rolls(F, I, r, mu):
+    """Whether resting rider ``r``'s spin takes part in its friction (friction ``mu``): a
+    circle on a flat contact, which rolls or skids. A polygon rests without turning, and a
+    circle on a curved contact or without friction keeps its spin."""
+    return mu > 0.0 and I[r, L.KIND] == 0 and I[r, L.EDGE_OWNER] >= 0 and F[r, L.INV_INERTIA] > 0.0
+
+
+@njit(cache=True, inline="always")
+def roll_ratio(F, r):
+    """``m R^2 / I`` of circle ``r`` (2 for a uniform disc): a rolling circle's tangential
+    acceleration is ``ratio / (1 + ratio)`` of a frictionless slide's."""
+    radius = F[r, L.RADIUS]
+    return radius * radius * F[r, L.INV_INERTIA] / F[r, L.INV_MASS]
+
+
+@njit(cache=True)
+def contact_slip(S, r, t):
+    """Resting rider ``r``'s slip at ``t``: the velocity of its contact point along the tangent
+    relative to its support, ``vt - omega R`` for a rolling circle (``rolls``), ``vt`` for
+    any other body; and whether its spin takes part: ``(slip, rolling)``. A rolling circle's
+    slip within rounding of its speeds (``STILL_ULPS``) is exactly 0."""
+    F = S[0]
+    I = S[1]
+    vt, _, _ = relative_tangential(S, r, t)
+    mu = combine(F[r, L.FRICTION], F[I[r, L.SUPPORT], L.FRICTION], S[4][L.FRICTION_RULE])
+    if not rolls(F, I, r, mu):
+        return vt, False
+    turn = spin_at(F, r, t) * F[r, L.RADIUS]
+    slip = vt - turn
+    if abs(slip) <= STILL_ULPS * (abs(vt) + abs(turn)):
+        slip = 0.0
+    return slip, True
+
+
+@njit(cache=True, inline="always")
 def mark_pile(S, x):
     """Note that the pile holding resting body ``x`` must be solved again before the event
     ends (``pge.core.pile.settle_piles``): a rider arrived, left or changed on it."""
@@ -120,7 +155,23 @@ def settle_acceleration(S, r, t):
         return False
     mu = combine(F[r, L.FRICTION], F[s, L.FRICTION], Q[L.FRICTION_RULE])
     limit = -mu * an
-    if vt == 0.0:
+    F[r, L.ALPHA] = 0.0  # r is at t: its spin changes from now on
+    if rolls(F, I, r, mu):
+        # A circle on a face: friction acts at its contact point, whose slip is vt - omega R,
+        # and turns it as it pushes it (torque -R f along the tangent).
+        slip, _ = contact_slip(S, r, t)
+        ratio = roll_ratio(F, r)
+        radius = F[r, L.RADIUS]
+        if slip == 0.0 and abs(at) <= limit * (1.0 + ratio):
+            I[r, L.REST_MODE] = L.STUCK  # rolls: its contact point stays on the support
+            at_eff = at * ratio / (1.0 + ratio)
+            F[r, L.ALPHA] = at_eff / radius
+        else:
+            I[r, L.REST_MODE] = L.SLIDING  # skids: friction against the slip
+            push = math.copysign(limit, at if slip == 0.0 else slip)
+            at_eff = at - push
+            F[r, L.ALPHA] = push * ratio / radius
+    elif vt == 0.0:
         if abs(at) <= limit:
             I[r, L.REST_MODE] = L.STUCK
             at_eff = 0.0
@@ -524,6 +575,7 @@ def detach(S, r):
     I[r, L.EDGE_OWNER] = -1
     F[r, L.AX] = F[r, L.FREE_AX]
     F[r, L.AY] = F[r, L.FREE_AY]
+    F[r, L.ALPHA] = 0.0  # every caller has advanced r to now
 
 
 @njit(cache=True, inline="always")
@@ -686,6 +738,9 @@ def schedule_contact_event(S, r):
             vt, _, an = relative_tangential(S, r, now)
             if vt * vt < -an * F[other, L.RADIUS]:
                 I[r, L.EDGE_OWNER] = CURVED_STEPPING
+                if F[r, L.ALPHA] != 0.0:
+                    advance(F, r, now)
+                    F[r, L.ALPHA] = 0.0  # on a curved contact it keeps its spin
                 best = _INF
     if I[r, L.EDGE_OWNER] == CURVED_STEPPING:
         s = I[r, L.SUPPORT]
@@ -697,11 +752,13 @@ def schedule_contact_event(S, r):
             first_descent_quadratic(step, vt, half_at, _INF, False),
         )
     if I[r, L.REST_MODE] == L.SLIDING:
-        vt, _, _ = relative_tangential(S, r, now)
+        slip, rolling = contact_slip(S, r, now)
         s = I[r, L.SUPPORT]
-        at_eff = -(F[r, L.AX] - F[s, L.AX]) * F[r, L.REST_NY] + (F[r, L.AY] - F[s, L.AY]) * F[r, L.REST_NX]
-        if vt != 0.0 and at_eff != 0.0 and (vt > 0.0) != (at_eff > 0.0):
-            stop = -vt / at_eff
+        rate = -(F[r, L.AX] - F[s, L.AX]) * F[r, L.REST_NY] + (F[r, L.AY] - F[s, L.AY]) * F[r, L.REST_NX]
+        if rolling:
+            rate -= F[r, L.ALPHA] * F[r, L.RADIUS]
+        if slip != 0.0 and rate != 0.0 and (slip > 0.0) != (rate > 0.0):
+            stop = -slip / rate
             if stop < best:
                 best = stop
                 what = L.STOP_SLIDING

@@ -23,10 +23,12 @@ from pge.core import layout as L
 from pge.core.contact import (
     carry_or_release_riders,
     combine,
+    contact_slip,
     detach,
     grounded,
     lowest_along,
     presses_into_neighbour,
+    relative_tangential,
     release_riders,
     resettle_riders,
     schedule_contact_event,
@@ -489,10 +491,19 @@ def contact_change(S, r, what, t):
         detach(S, r)
         S[13][L.S_RELEASES] += 1
     else:
-        dvx = F[s, L.VX] - F[r, L.VX]
-        dvy = F[s, L.VY] - F[r, L.VY]
-        F[r, L.VX] = F[s, L.VX]
-        F[r, L.VY] = F[s, L.VY]
+        _, rolling = contact_slip(S, r, t)
+        if rolling:
+            # A skidding circle's contact point stops: it rolls on at its velocity, its spin
+            # matching it.
+            dvx = 0.0
+            dvy = 0.0
+            vt, _, _ = relative_tangential(S, r, t)
+            F[r, L.OMEGA] = vt / F[r, L.RADIUS]
+        else:
+            dvx = F[s, L.VX] - F[r, L.VX]
+            dvy = F[s, L.VY] - F[r, L.VY]
+            F[r, L.VX] = F[s, L.VX]
+            F[r, L.VY] = F[s, L.VY]
         if settle_acceleration(S, r, t):
             # Its motion stays continuous: what rests on it keeps resting, re-settled.
             count = resettle_riders(S, r, dvx, dvy, True, group, count, t)

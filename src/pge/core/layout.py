@@ -29,7 +29,8 @@ INV_INERTIA = 34  # 1 / moment of inertia about the reference point, 0 for fixed
 ORIENT = 35  # the angle the body's outline rows in OL are turned to
 HELD_OMEGA = 36  # angular velocity kept while fixed, restored by unfix
 SLEEP_TRY = 37  # when the body last failed to fall asleep (pge.core.sleep)
-NF = 38
+ALPHA = 38  # angular acceleration: nonzero only for a circle rolling or skidding on a flat rest
+NF = 39
 
 # ---- I: int64 per body -------------------------------------------------------
 KIND = 0  # pge.toi.CIRCLE or POLYGON

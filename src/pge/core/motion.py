@@ -1,9 +1,11 @@
 """Closed-form motion of one body row ("delayed states"): position, velocity, angle.
 
 Between events a body moves with constant acceleration and turns with
-constant angular velocity: at time ``t`` its reference point is at
-``X + VX dt + AX dt^2 / 2`` and its angle is ``ANGLE + OMEGA dt``, with
-``dt = t - T0``. A polygon's outline rows in ``OL`` are turned to the angle
+constant angular acceleration: at time ``t`` its reference point is at
+``X + VX dt + AX dt^2 / 2`` and its angle is ``ANGLE + OMEGA dt + ALPHA dt^2 / 2``,
+with ``dt = t - T0``. ``ALPHA`` is zero except for a circle resting with friction on
+a flat face, whose spin the friction at its contact changes (rolling and skidding);
+a polygon turns at a constant rate, so the rotating kernels see ``ANGLE + OMEGA dt``. A polygon's outline rows in ``OL`` are turned to the angle
 ``ORIENT``; ``orient`` turns them to the body's angle now (from the unturned
 rows in ``OB``, never incrementally, so no rounding accumulates).
 """
@@ -38,7 +40,14 @@ def state_at(F, i, t):
 @njit(cache=True, inline="always")
 def angle_at(F, i, t):
     """Angle of body ``i`` at time ``t``."""
-    return F[i, L.ANGLE] + F[i, L.OMEGA] * (t - F[i, L.T0])
+    dt = t - F[i, L.T0]
+    return F[i, L.ANGLE] + (F[i, L.OMEGA] + 0.5 * F[i, L.ALPHA] * dt) * dt
+
+
+@njit(cache=True, inline="always")
+def spin_at(F, i, t):
+    """Angular velocity of body ``i`` at time ``t``."""
+    return F[i, L.OMEGA] + F[i, L.ALPHA] * (t - F[i, L.T0])
 
 
 @njit(cache=True, inline="always")
@@ -62,7 +71,9 @@ def advance(F, i, t):
         F[i, L.Y] += (F[i, L.VY] + 0.5 * ay * dt) * dt
         F[i, L.VX] += ax * dt
         F[i, L.VY] += ay * dt
-        F[i, L.ANGLE] += F[i, L.OMEGA] * dt
+        alpha = F[i, L.ALPHA]
+        F[i, L.ANGLE] += (F[i, L.OMEGA] + 0.5 * alpha * dt) * dt
+        F[i, L.OMEGA] += alpha * dt
         F[i, L.T0] = t
 
 

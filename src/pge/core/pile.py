@@ -2,12 +2,14 @@
 
 A resting body has one support, which is immovable (fixed or asleep) or resting itself. The
 bodies resting directly on an immovable one are the *bases* of piles: a pile is a base and
-everything resting on it, directly or through others, a tree of riders. Resting bodies do
+everything resting on it, directly or through others, a tree of riders. Resting polygons do
 not turn, so a pile is a tree of point masses joined by contacts, each with a fixed unit
 normal ``n`` (from the support towards the rider) and tangent ``t = (-n_y, n_x)``. A contact
 either *sticks* (the rider's acceleration is its support's) or *slides* (the relative
-acceleration lies along ``t``, and friction ``-mu N s t`` opposes the relative tangential
-velocity, of sign ``s``); its normal force ``N`` must be positive.
+acceleration lies along ``t``, and friction ``-mu N s t`` opposes the slip, of sign ``s``);
+its normal force ``N`` must be positive. A circle on a face with friction turns too: its slip
+is ``v_t - omega R``, stuck it *rolls* (its centre gains ``u t`` and its spin ``u / R``, the
+friction ``-u I / R^2`` along ``t``), and sliding its friction turns it.
 
 ``contact.settle_acceleration`` settles one rider against its support's acceleration as
 given, which is exact on an immovable support; but a rider's weight and friction also load
@@ -40,7 +42,16 @@ import numpy as np
 from numba import njit
 
 from pge.core import layout as L
-from pge.core.contact import base_of, combine, detach, presses_into_neighbour, release_riders, settle_acceleration
+from pge.core.contact import (
+    base_of,
+    combine,
+    contact_slip,
+    detach,
+    presses_into_neighbour,
+    release_riders,
+    rolls,
+    settle_acceleration,
+)
 from pge.core.motion import advance, state_at
 
 _FINE, _SLIPS, _LETS_GO, _CURVED, _JAMS = 0, 1, 2, 3, 4
@@ -84,10 +95,12 @@ def _walk(I, base, order, parent, fill):
 
 
 @njit(cache=True)
-def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
+def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
     """Solve the pile for the contact modes in ``slide`` (0: stuck, else the sign of the
-    sliding), writing each body's acceleration to ``acc``. A ``held`` contact sticks whatever
-    friction it needs (a neighbour takes the rest).
+    sliding), writing each body's acceleration to ``acc`` and angular acceleration to
+    ``spin``. A ``held`` contact sticks whatever friction it needs (a neighbour takes the
+    rest). A circle on a face with friction (``contact.rolls``) that is stuck rolls: its
+    contact point stays on the support while its centre moves along the face.
 
     Returns ``(k, what)``: the first contact (in ``order``, support first) that fails and
     how (``_SLIPS``: stuck but needing more friction than it has, with the sign it slides
@@ -107,9 +120,14 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
         weight[k, 0] = m * F[p, L.FREE_AX]
         weight[k, 1] = m * F[p, L.FREE_AY]
     friction = np.empty(n)
+    turning = np.zeros(n)  # I / R^2 of a stuck rolling circle, else 0
     for k in range(n):
         p = order[k]
         friction[k] = combine(F[p, L.FRICTION], F[I[p, L.SUPPORT], L.FRICTION], Q[L.FRICTION_RULE])
+        spin[k] = 0.0
+        if slide[k] == 0 and held[k] == 0 and rolls(F, I, p, friction[k]):
+            radius = F[p, L.RADIUS]
+            turning[k] = 1.0 / (F[p, L.INV_INERTIA] * radius * radius)
     for k in range(n - 1, 0, -1):
         p = order[k]
         nx = F[p, L.REST_NX]
@@ -117,6 +135,10 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
         a00, a01, a10, a11 = mass[k, 0], mass[k, 1], mass[k, 2], mass[k, 3]
         b0, b1 = weight[k, 0], weight[k, 1]
         q = parent[k]
+        if turning[k] > 0.0:
+            # Rolling: f = A (a + u t) - b with f . t = -u I / R^2, so f = A' a - b' with
+            # A' = A - (A t)(t A) / (t A t + I / R^2) and b' = b - (A t)(t . b) / (the same).
+            a00, a01, a10, a11, b0, b1 = _rolling_mass(a00, a01, a10, a11, b0, b1, -ny, nx, turning[k])
         if slide[k] == 0:  # f = A a - b
             mass[q, 0] += a00
             mass[q, 1] += a01
@@ -163,6 +185,16 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
             along = -(-rx * ny + ry * nx)
             acc[k, 0] = aqx
             acc[k, 1] = aqy
+            if turning[k] > 0.0:
+                # Rolling: the centre gains u along t = (-ny, nx), the contact force u (A t).
+                atx = -a00 * ny + a01 * nx
+                aty = -a10 * ny + a11 * nx
+                u = -along / (-ny * atx + nx * aty + turning[k])
+                acc[k, 0] -= u * ny
+                acc[k, 1] += u * nx
+                normal += u * (atx * nx + aty * ny)
+                along = -u * turning[k]
+                spin[k] = u / F[p, L.RADIUS]
             if not normal > 0.0:
                 return k, _LETS_GO
             if held[k] == 0 and abs(along) > friction[k] * normal:
@@ -182,12 +214,36 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t):
             acc[k, 1] = aqy + u * nx
             if not normal > 0.0:
                 return k, _LETS_GO
+            if rolls(F, I, p, friction[k]):
+                # A skidding circle: the friction -mu s N t at its contact turns it.
+                spin[k] = friction[k] * slide[k] * normal * F[p, L.RADIUS] * F[p, L.INV_INERTIA]
         if I[p, L.EDGE_OWNER] < 0 and q >= 0:
             # A curved contact rests only on a still support (contact.try_rest).
             _, _, svx, svy = state_at(F, order[q], t)
             if acc[q, 0] != 0.0 or acc[q, 1] != 0.0 or svx != 0.0 or svy != 0.0:
                 return k, _CURVED
     return -1, _FINE
+
+
+@njit(cache=True, inline="always")
+def _rolling_mass(a00, a01, a10, a11, b0, b1, tx, ty, turning):
+    """The articulated mass ``A'`` and weight ``b'`` with which a rolling circle (with what
+    rests on it: ``A``, ``b``) answers its support's acceleration, ``turning = I / R^2``:
+    along the tangent ``t`` its contact force also spins it up, so it resists less."""
+    atx = a00 * tx + a01 * ty  # A t
+    aty = a10 * tx + a11 * ty
+    tax = tx * a00 + ty * a10  # t A
+    tay = tx * a01 + ty * a11
+    denominator = tx * atx + ty * aty + turning
+    tb = (tx * b0 + ty * b1) / denominator
+    return (
+        a00 - atx * tax / denominator,
+        a01 - atx * tay / denominator,
+        a10 - aty * tax / denominator,
+        a11 - aty * tay / denominator,
+        b0 - atx * tb,
+        b1 - aty * tb,
+    )
 
 
 @njit(cache=True)
@@ -219,39 +275,40 @@ def _jam(F, I, order, n, t):
 
 
 @njit(cache=True)
-def _sliding_sign(F, I, x, t):
-    """The sign of resting body ``x``'s tangential velocity relative to its support (0: none)."""
-    s = I[x, L.SUPPORT]
-    _, _, rvx, rvy = state_at(F, x, t)
-    _, _, svx, svy = state_at(F, s, t)
-    vt = -(rvx - svx) * F[x, L.REST_NY] + (rvy - svy) * F[x, L.REST_NX]
-    if vt > 0.0:
+def _sliding_sign(S, x, t):
+    """The sign of resting body ``x``'s slip on its support (``contact.contact_slip``; 0: none)."""
+    slip, _ = contact_slip(S, x, t)
+    if slip > 0.0:
         return 1
-    if vt < 0.0:
+    if slip < 0.0:
         return -1
     return 0
 
 
 @njit(cache=True)
-def _driven_by_friction(F, I, ground, order, parent, n, slide, acc, t):
-    """The first contact (in ``order``) that slides from rest against the direction it is
-    accelerating in, or -1. Its friction, pointing against the slide, would push it along
+def _driven_by_friction(S, ground, order, parent, n, slide, acc, spin, t):
+    """The first contact (in ``order``) that slides from rest against the direction its slip
+    is accelerating in, or -1. Its friction, pointing against the slide, would push it along
     and do positive work: the slide's direction is wrong."""
+    F = S[0]
     for k in range(n):
-        if slide[k] == 0 or _sliding_sign(F, I, order[k], t) != 0:
+        if slide[k] == 0 or _sliding_sign(S, order[k], t) != 0:
             continue
         q = parent[k]
         aqx = F[ground, L.AX] if q < 0 else acc[q, 0]
         aqy = F[ground, L.AY] if q < 0 else acc[q, 1]
         p = order[k]
+        if combine(F[p, L.FRICTION], F[S[1][p, L.SUPPORT], L.FRICTION], S[4][L.FRICTION_RULE]) == 0.0:
+            continue  # no friction, no work: either way is the same motion
         along = -(acc[k, 0] - aqx) * F[p, L.REST_NY] + (acc[k, 1] - aqy) * F[p, L.REST_NX]
+        along -= spin[k] * F[p, L.RADIUS]
         if along * slide[k] < 0.0:
             return k
     return -1
 
 
 @njit(cache=True)
-def _restart_slips(F, I, order, n, held, slide, t):
+def _restart_slips(S, order, n, held, slide, t):
     """Set every contact's mode back to what its motion says (sliding with its relative
     velocity's sign, stuck when it has none; a ``held`` one stuck), after a hold changed the
     pile's loads.
@@ -262,7 +319,7 @@ def _restart_slips(F, I, order, n, held, slide, t):
     slid off from rest with friction as its engine: energy seed 3325). Each hold is made once,
     so the passes stay bounded."""
     for k in range(n):
-        slide[k] = 0 if held[k] != 0 else _sliding_sign(F, I, order[k], t)
+        slide[k] = 0 if held[k] != 0 else _sliding_sign(S, order[k], t)
 
 
 @njit(cache=True)
@@ -273,12 +330,13 @@ def _settle_alone(S, base, t, out, count):
     I = S[1]
     ax = F[base, L.AX]
     ay = F[base, L.AY]
+    alpha = F[base, L.ALPHA]
     mode = I[base, L.REST_MODE]
     advance(F, base, t)
     if not settle_acceleration(S, base, t):
         detach(S, base)
         S[13][L.S_RELEASES] += 1
-    elif F[base, L.AX] == ax and F[base, L.AY] == ay and I[base, L.REST_MODE] == mode:
+    elif F[base, L.AX] == ax and F[base, L.AY] == ay and F[base, L.ALPHA] == alpha and I[base, L.REST_MODE] == mode:
         return count
     out[count] = base
     return count + 1
@@ -305,13 +363,14 @@ def settle_pile(S, base, t, out, count):
         ground = I[base, L.SUPPORT]
         slide = np.empty(n, dtype=np.int64)
         for k in range(n):
-            slide[k] = _sliding_sign(F, I, order[k], t)
+            slide[k] = _sliding_sign(S, order[k], t)
         held = np.zeros(n, dtype=np.int64)
         jolted = False
         acc = np.empty((n, 2))
+        spin = np.empty(n)
         stats[L.S_PILE_SOLVES] += 1
         while True:
-            k, what = _solve(F, I, Q, ground, order, parent, n, slide, held, acc, t)
+            k, what = _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t)
             if what == _SLIPS:  # each pass turns one stuck contact to sliding: at most n
                 continue
             if what == _JAMS:
@@ -331,17 +390,17 @@ def settle_pile(S, base, t, out, count):
                 _, _, qvx, qvy = state_at(F, order[q], t)
                 if held[q] == 0 and qvx == 0.0 and qvy == 0.0:
                     held[q] = 1
-                    _restart_slips(F, I, order, n, held, slide, t)
+                    _restart_slips(S, order, n, held, slide, t)
                     continue
                 what = _LETS_GO
             if what != _FINE:
                 break
-            backwards = _driven_by_friction(F, I, ground, order, parent, n, slide, acc, t)
+            backwards = _driven_by_friction(S, ground, order, parent, n, slide, acc, spin, t)
             if backwards >= 0:
                 # No mode of this contact fits (the solve chose its slide under other loads):
                 # it sticks, which does no work, whatever friction that takes.
                 held[backwards] = 1
-                _restart_slips(F, I, order, n, held, slide, t)
+                _restart_slips(S, order, n, held, slide, t)
                 continue
             pushed = -1
             for k in range(n):
@@ -352,7 +411,7 @@ def settle_pile(S, base, t, out, count):
             if pushed < 0:
                 break
             held[pushed] = 1  # each member at most once
-            _restart_slips(F, I, order, n, held, slide, t)
+            _restart_slips(S, order, n, held, slide, t)
         if what == _LETS_GO:
             x = order[k]
             advance(F, x, t)
@@ -368,7 +427,7 @@ def settle_pile(S, base, t, out, count):
         for k in range(n):
             p = order[k]
             mode = L.STUCK if slide[k] == 0 else L.SLIDING
-            if F[p, L.AX] != acc[k, 0] or F[p, L.AY] != acc[k, 1] or I[p, L.REST_MODE] != mode:
+            if F[p, L.AX] != acc[k, 0] or F[p, L.AY] != acc[k, 1] or F[p, L.ALPHA] != spin[k] or I[p, L.REST_MODE] != mode:
                 changed = True
         if not changed and not jolted:
             return count
@@ -377,6 +436,7 @@ def settle_pile(S, base, t, out, count):
             advance(F, p, t)
             F[p, L.AX] = acc[k, 0]
             F[p, L.AY] = acc[k, 1]
+            F[p, L.ALPHA] = spin[k]
             I[p, L.REST_MODE] = L.STUCK if slide[k] == 0 else L.SLIDING
             out[count] = p
             count += 1

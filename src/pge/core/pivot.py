@@ -14,10 +14,10 @@ import numpy as np
 from numba import njit
 
 from pge.core import layout as L
-from pge.core.contact import combine, relative_tangential, turn_if_clear
+from pge.core.contact import combine, detach, relative_tangential, rolls, settle_acceleration, turn_if_clear
 from pge.core.grid import gather
 from pge.core.impulse import contact_impulse
-from pge.core.motion import advance, state_at
+from pge.core.motion import advance, spin_at, state_at
 from pge.core.overlap import nearest_normal
 from pge.core.predict import still_speed
 from pge.core.response import apply_impulse, contact_response
@@ -356,7 +356,7 @@ def others_pay_for_lift(S, a, b, pre, out, count, t):
                 size += 1
         ring_start = ring_end
     if total > gain:
-        return True, _pay(F, I, pile[2:size], gain / total, out, count, t)
+        return True, _pay(S, pile[2:size], gain / total, out, count, t)
     # The pile is too poor: the richest bodies anywhere pay, as few as will do.
     candidates = np.empty(I.shape[0], dtype=np.int64)
     energies = np.empty(I.shape[0])
@@ -378,37 +378,44 @@ def others_pay_for_lift(S, a, b, pre, out, count, t):
     if not total > gain:
         return False, count
     S[13][L.S_FAR_PAYMENTS] += 1
-    return True, _pay(F, I, candidates[order[:used]], gain / total, out, count, t)
+    return True, _pay(S, candidates[order[:used]], gain / total, out, count, t)
 
 
 @njit(cache=True)
 def _payable(F, I, j, t):
     """The kinetic energy body ``j`` can give up to pay for a lift at ``t`` without changing
-    how it rests: all of a free body's (velocity and spin), a resting circle's spin (which its
-    rest does not depend on), nothing of a fixed, sleeping or resting polygon."""
+    what it rests on: all of a free body's (velocity and spin), a resting circle's spin (a
+    rolling one then skids, and its friction only takes more energy out), nothing of a
+    fixed, sleeping or resting polygon."""
     if I[j, L.FIXED] != 0 or I[j, L.SLEEP_NEXT] >= 0 or not F[j, L.INV_MASS] > 0.0:
         return 0.0
     if I[j, L.SUPPORT] >= 0:
         if I[j, L.KIND] != CIRCLE:
             return 0.0
-        return _kinetic(F, j, 0.0, 0.0, F[j, L.OMEGA])
+        return _kinetic(F, j, 0.0, 0.0, spin_at(F, j, t))
     _, _, vx, vy = state_at(F, j, t)
     return _kinetic(F, j, vx, vy, F[j, L.OMEGA])
 
 
 @njit(cache=True)
-def _pay(F, I, payers, share, out, count, t):
+def _pay(S, payers, share, out, count, t):
     """Slow every body of ``payers`` by the factor that takes ``share`` of its payable energy
-    (``_payable``) away; append those that changed to ``out`` from ``count``."""
+    (``_payable``) away; append those that changed to ``out`` from ``count``. A resting
+    circle whose spin changed is settled again (its slip changed)."""
+    F = S[0]
+    I = S[1]
     factor = math.sqrt(1.0 - share) * (1.0 - 1e-12)
     for j in payers:
         if not _payable(F, I, j, t) > 0.0:
             continue
+        advance(F, j, t)
         if I[j, L.SUPPORT] < 0:
-            advance(F, j, t)
             F[j, L.VX] *= factor
             F[j, L.VY] *= factor
         F[j, L.OMEGA] *= factor
+        if I[j, L.SUPPORT] >= 0 and not settle_acceleration(S, j, t):
+            detach(S, j)
+            S[13][L.S_RELEASES] += 1
         out[count] = j
         count += 1
     return count
@@ -431,6 +438,8 @@ def _holds_at_rest(S, x):
         return False
     _, at, an = relative_tangential(S, x, S[3][L.TIME])
     mu = combine(F[x, L.FRICTION], F[s, L.FRICTION], Q[L.FRICTION_RULE])
+    if rolls(F, I, x, mu):
+        return an < 0.0 and at == 0.0  # friction cannot hold a circle on a slope: it rolls
     return an < 0.0 and abs(at) <= -mu * an
 
 

@@ -172,6 +172,7 @@ def try_sleep(S, a, b, out, count, t):
         F[x, L.VX] = 0.0
         F[x, L.VY] = 0.0
         F[x, L.OMEGA] = 0.0
+        F[x, L.ALPHA] = 0.0
         F[x, L.AX] = 0.0
         F[x, L.AY] = 0.0
         I[x, L.SLEEP_NEXT] = members[(e + 1) % n]
