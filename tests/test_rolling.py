@@ -27,6 +27,7 @@ from hypothesis import strategies as st
 
 from pge import World
 from pge.events import Collision
+from test_piles import mechanical_energy  # kinetic (with rotation) plus potential energy
 
 G = 9.81
 CLOSE = 1e-9
@@ -38,17 +39,6 @@ def floor_world(floor_friction=0.0):
     world = World(gravity=(0.0, -G), elasticity=0.5, bounds=(-4.0, -1.0, 8.0, 3.0))
     floor = world.add_box(-4.0, -0.25, 12.0, 0.25, fixed=True, friction=floor_friction, name="floor")
     return world, floor
-
-
-def mechanical_energy(world):
-    """Kinetic (translation and rotation) plus gravitational potential energy of the moving bodies."""
-    total = 0.0
-    for body in world.bodies:
-        if not body.is_fixed:
-            vx, vy = body.velocity
-            w = body.angular_velocity
-            total += body.mass * (0.5 * (vx * vx + vy * vy) + G * body.position[1]) + 0.5 * body.inertia * w * w
-    return total
 
 
 # ------------------------------------------------------------------ on the floor
