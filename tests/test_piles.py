@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from pge import World
@@ -181,6 +182,107 @@ def test_a_box_dropped_on_a_box_sliding_on_ice_keeps_the_horizontal_momentum(spe
     assert met > 0
 
 
+# ------------------------------------------------------------------ Painleve's paradox
+
+
+def painleve_pile(box_mass, ball_mass, mu, angle, box_speed, slide_speed):
+    """Engine arrays of a box (row 1) sliding at ``box_speed`` along a fixed floor (row 0, normal
+    (0, 1)) and a ball (row 2) sliding down the box's face, of normal ``(-sin a, cos a)``, at
+    ``slide_speed`` relative to it (no normal motion), friction ``mu`` everywhere. Returns
+    ``(F, I, Q, order, parent)``."""
+    from pge.core import layout as L
+
+    F = np.zeros((3, L.NF))
+    I = np.full((3, L.NI), -1, dtype=np.int64)
+    Q = np.zeros(L.NQ, dtype=np.int64)
+    Q[L.FRICTION_RULE] = 1
+    nx, ny = -math.sin(angle), math.cos(angle)
+    tx, ty = -ny, nx  # down the face, away from the box
+    for row, mass, normal, velocity, support in (
+        (1, box_mass, (0.0, 1.0), (box_speed, 0.0), 0),
+        (2, ball_mass, (nx, ny), (box_speed + slide_speed * tx, slide_speed * ty), 1),
+    ):
+        F[row, L.INV_MASS] = 1.0 / mass
+        F[row, L.FREE_AY] = -G
+        F[row, L.REST_NX], F[row, L.REST_NY] = normal
+        F[row, L.VX], F[row, L.VY] = velocity
+        I[row, L.SUPPORT] = support
+    F[:, L.FRICTION] = mu
+    return F, I, Q, np.array([1, 2]), np.array([-1, 0])
+
+
+def engine_state(F, I, Q):
+    """The parts of the engine's state tuple that the pile's impact reads (F, I and Q)."""
+    from pge.core import layout as L
+
+    return (F, I, np.zeros((1, 5)), np.zeros(L.NP), Q)
+
+
+def test_a_box_that_cannot_slide_under_its_rider_stops_by_a_tangential_impact():
+    """Painleve's paradox, worked by hand: a box (0.5 kg) sliding right at 0.01 on a floor, a ball (2 kg)
+    sliding down its 45 degree face, friction 1. No sliding motion of the box fits (the pile solve
+    jams), so the floor's impulse stops it: 0.005 along the cone's edge d0 = (-1, 1) stops the slip,
+    leaving the box pressed into the floor at 0.006 m/s, then a stuck impulse (0, 0.015) ends that;
+    the ball takes the impulse along its own cone's edge d = (0, sqrt 2) that keeps it on the face,
+    dv = -(v_box . n) d = (0, 0.01). The floor's impulse (-0.005, 0.02) is the pair's change of
+    momentum, within the cone and against the slip; the kinetic energy falls."""
+    from pge.core import pile
+
+    angle = math.pi / 4
+    F, I, Q, order, parent = painleve_pile(0.5, 2.0, 1.0, angle, 0.01, 0.5)
+    acc = np.empty((2, 2))
+    slide = np.array([-1, 1])  # the box slides right, along -t; the ball down the face, along +t
+    assert pile._solve(F, I, Q, 0, order, parent, 2, slide, np.zeros(2, dtype=np.int64), acc, np.empty(2), 0.0) == (0, pile._JAMS)
+    masses = np.array([0.5, 2.0])
+    before = F[1:, 2:4].copy()
+    assert pile._jolt(engine_state(F, I, Q), order, parent, 2, 0.0)
+    after = F[1:, 2:4]
+    assert tuple(after[0]) == (0.0, 0.0)
+    assert after[1] - before[1] == pytest.approx([0.0, 0.01], abs=1e-15)
+    floor_impulse = masses @ (after - before)
+    assert floor_impulse == pytest.approx([-0.005, 0.02], abs=1e-15)
+    energy = 0.5 * masses @ (after**2).sum(axis=1), 0.5 * masses @ (before**2).sum(axis=1)
+    assert energy[0] < energy[1]
+
+
+@pytest.mark.parametrize(
+    "box_mass, ball_mass, mu, degrees, box_speed, slide_speed",
+    [
+        (0.5, 2.0, 1.0, 45.0, 0.01, 0.5),
+        (0.667, 1.753, 0.8228, 58.47, 6.4e-4, 0.78),  # energy seed 489 at 12 bodies, near enough
+        (0.3, 1.0, 0.9, 40.0, 0.05, 2.0),
+        (0.2, 3.0, 1.0, 60.0, 0.02, 0.3),
+    ],
+)
+def test_a_tangential_impact_obeys_coulomb_and_gains_no_energy(
+    box_mass, ball_mass, mu, degrees, box_speed, slide_speed
+):
+    """Wherever the tangential impact stops the box: the box is still, the ball keeps its normal
+    velocity relative to the face and its slide's direction, and took an impulse along its cone's
+    edge, pressing; the floor's impulse (the pair's change of momentum: the inner impulses cancel)
+    presses, lies within the floor's cone and opposes the slip; the kinetic energy falls."""
+    from pge.core import pile
+
+    angle = math.radians(degrees)
+    F, I, Q, order, parent = painleve_pile(box_mass, ball_mass, mu, angle, box_speed, slide_speed)
+    masses = np.array([box_mass, ball_mass])
+    before = F[1:, 2:4].copy()
+    assert pile._jolt(engine_state(F, I, Q), order, parent, 2, 0.0)
+    after = F[1:, 2:4]
+    n = np.array([-math.sin(angle), math.cos(angle)])
+    t = np.array([-n[1], n[0]])
+    assert tuple(after[0]) == (0.0, 0.0)
+    assert (after[1] - after[0]) @ n == pytest.approx(0.0, abs=1e-15)
+    assert (after[1] - after[0]) @ t > 0.0
+    inner = ball_mass * (after[1] - before[1])
+    d = n - mu * t
+    assert inner[0] * d[1] - inner[1] * d[0] == pytest.approx(0.0, abs=1e-15) and inner @ n > 0.0
+    floor_impulse = masses @ (after - before)
+    assert floor_impulse[1] > 0.0 and abs(floor_impulse[0]) <= mu * floor_impulse[1] * (1 + 1e-12)
+    assert floor_impulse[0] * box_speed < 0.0
+    assert masses @ (after**2).sum(axis=1) < masses @ (before**2).sum(axis=1)
+
+
 # ------------------------------------------------------------------ surveyed scenes
 
 
@@ -191,6 +293,7 @@ def test_a_box_dropped_on_a_box_sliding_on_ice_keeps_the_horizontal_momentum(spe
         (178, 10),  # on a moving support), was let go and landed again, for ever at one instant
         (766, 6),  # a ball on the face of a box sliding with friction 0.96: no sliding motion fits
         (616, 6),  # (Painleve), the box was let go and fell back, for ever; now it sticks at once
+        (489, 12),  # the same, the ball moving fast the other way: a tangential impact stops the box
     ],
 )
 def test_surveyed_piles_that_stormed_run_on_gaining_no_energy(seed, count):

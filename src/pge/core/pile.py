@@ -24,7 +24,8 @@ so ``M`` is rank one and not symmetric. Its support adds ``M`` to its own mass m
 ``-c`` to its own weight. From the base up, each body then gets its acceleration and contact
 force. A stuck contact that needs more friction than ``mu N`` starts sliding (against the
 friction it needed; where friction is so strong that no sliding motion fits, Painleve's paradox,
-the base sticks at once, the pile carried along, if that takes energy out); a body that would
+the base sticks at once, by a tangential impact through the pile's contacts, or else with the pile
+carried along if that takes energy out); a body that would
 accelerate into a neighbour that cannot give way is
 held to its support (the neighbour's reaction is not part of the pile), and so is a still
 support under a curved contact (a curved rest needs a still support; it would slip under
@@ -52,7 +53,7 @@ from pge.core.contact import (
     rolls,
     settle_acceleration,
 )
-from pge.core.motion import advance, state_at
+from pge.core.motion import advance, spin_at, state_at
 
 _FINE, _SLIPS, _LETS_GO, _CURVED, _JAMS = 0, 1, 2, 3, 4
 
@@ -95,21 +96,12 @@ def _walk(I, base, order, parent, fill):
 
 
 @njit(cache=True)
-def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
-    """Solve the pile for the contact modes in ``slide`` (0: stuck, else the sign of the
-    sliding), writing each body's acceleration to ``acc`` and angular acceleration to
-    ``spin``. A ``held`` contact sticks whatever friction it needs (a neighbour takes the
-    rest). A circle on a face with friction (``contact.rolls``) that is stuck rolls: its
-    contact point stays on the support while its centre moves along the face.
-
-    Returns ``(k, what)``: the first contact (in ``order``, support first) that fails and
-    how (``_SLIPS``: stuck but needing more friction than it has, with the sign it slides
-    with in ``slide[k]``; ``_LETS_GO``: pulling; ``_CURVED``: curved on a support that would
-    move; ``_JAMS``: sliding with friction so strong that no sliding motion fits, as in
-    Painleve's paradox), or ``(-1, _FINE)``.
-    """
-    mass = np.empty((n, 4))  # articulated mass matrix (row major) of each body with its riders
-    weight = np.empty((n, 2))  # articulated weight (force at zero acceleration)
+def _articulate(F, I, Q, order, parent, n, slide, turning, mass, weight, friction):
+    """From the riders on top down to the base, fill each body's articulated mass matrix
+    ``mass`` (row major) and weight ``weight`` (the force at zero acceleration) with all that
+    rests on it, for the contact modes in ``slide`` (a contact with ``turning[k] = I / R^2 > 0``
+    rolls), and each contact's friction coefficient ``friction``. Returns the first sliding
+    contact met (from the top) where no sliding motion fits (Painleve's paradox), or -1."""
     for k in range(n):
         p = order[k]
         m = 1.0 / F[p, L.INV_MASS]
@@ -119,15 +111,9 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
         mass[k, 3] = m
         weight[k, 0] = m * F[p, L.FREE_AX]
         weight[k, 1] = m * F[p, L.FREE_AY]
-    friction = np.empty(n)
-    turning = np.zeros(n)  # I / R^2 of a stuck rolling circle, else 0
     for k in range(n):
         p = order[k]
         friction[k] = combine(F[p, L.FRICTION], F[I[p, L.SUPPORT], L.FRICTION], Q[L.FRICTION_RULE])
-        spin[k] = 0.0
-        if slide[k] == 0 and held[k] == 0 and rolls(F, I, p, friction[k]):
-            radius = F[p, L.RADIUS]
-            turning[k] = 1.0 / (F[p, L.INV_INERTIA] * radius * radius)
     for k in range(n - 1, 0, -1):
         p = order[k]
         nx = F[p, L.REST_NX]
@@ -154,7 +140,7 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
         aty = -a10 * ny + a11 * nx
         det = dx * aty - dy * atx
         if not det > 0.0:
-            return k, _JAMS
+            return k
         gx = -aty / det
         gy = atx / det
         wx = gx * a00 + gy * a10  # N = g . b - w . a
@@ -166,6 +152,53 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
         mass[q, 3] -= dy * wy
         weight[q, 0] -= dx * gb
         weight[q, 1] -= dy * gb
+    return -1
+
+
+@njit(cache=True)
+def _sliding_response(a00, a01, a10, a11, nx, ny, mu, s, rx, ry):
+    """A rider of articulated mass ``A`` sliding (sign ``s``) on a contact of normal ``n``, the
+    contact force ``N d`` with ``d = n - mu s t``: solves ``A u t - N d = r`` (``r = b - A a``
+    for forces, ``-A dv`` for impulses) for the relative motion ``u`` along ``t`` and ``N``.
+    Returns ``(det, u, N)``; no sliding motion fits unless ``det > 0``."""
+    dx = nx + mu * s * ny
+    dy = ny - mu * s * nx
+    atx = -a00 * ny + a01 * nx
+    aty = -a10 * ny + a11 * nx
+    det = dx * aty - dy * atx
+    if not det > 0.0:
+        return det, 0.0, 0.0
+    return det, (-dy * rx + dx * ry) / det, (-aty * rx + atx * ry) / det
+
+
+@njit(cache=True)
+def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
+    """Solve the pile for the contact modes in ``slide`` (0: stuck, else the sign of the
+    sliding), writing each body's acceleration to ``acc`` and angular acceleration to
+    ``spin``. A ``held`` contact sticks whatever friction it needs (a neighbour takes the
+    rest). A circle on a face with friction (``contact.rolls``) that is stuck rolls: its
+    contact point stays on the support while its centre moves along the face.
+
+    Returns ``(k, what)``: the first contact (in ``order``, support first) that fails and
+    how (``_SLIPS``: stuck but needing more friction than it has, with the sign it slides
+    with in ``slide[k]``; ``_LETS_GO``: pulling; ``_CURVED``: curved on a support that would
+    move; ``_JAMS``: sliding with friction so strong that no sliding motion fits, as in
+    Painleve's paradox), or ``(-1, _FINE)``.
+    """
+    mass = np.empty((n, 4))
+    weight = np.empty((n, 2))
+    friction = np.empty(n)
+    turning = np.zeros(n)  # I / R^2 of a stuck rolling circle, else 0
+    for k in range(n):
+        p = order[k]
+        spin[k] = 0.0
+        mu = combine(F[p, L.FRICTION], F[I[p, L.SUPPORT], L.FRICTION], Q[L.FRICTION_RULE])
+        if slide[k] == 0 and held[k] == 0 and rolls(F, I, p, mu):
+            radius = F[p, L.RADIUS]
+            turning[k] = 1.0 / (F[p, L.INV_INERTIA] * radius * radius)
+    k = _articulate(F, I, Q, order, parent, n, slide, turning, mass, weight, friction)
+    if k >= 0:
+        return k, _JAMS
     for k in range(n):
         p = order[k]
         q = parent[k]
@@ -201,15 +234,9 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
                 slide[k] = -1 if along > 0.0 else 1
                 return k, _SLIPS
         else:
-            dx = nx + friction[k] * slide[k] * ny
-            dy = ny - friction[k] * slide[k] * nx
-            atx = -a00 * ny + a01 * nx
-            aty = -a10 * ny + a11 * nx
-            det = dx * aty - dy * atx
+            det, u, normal = _sliding_response(a00, a01, a10, a11, nx, ny, friction[k], slide[k], rx, ry)
             if not det > 0.0:
                 return k, _JAMS
-            u = (-dy * rx + dx * ry) / det
-            normal = (-aty * rx + atx * ry) / det
             acc[k, 0] = aqx - u * ny
             acc[k, 1] = aqy + u * nx
             if not normal > 0.0:
@@ -244,6 +271,153 @@ def _rolling_mass(a00, a01, a10, a11, b0, b1, tx, ty, turning):
         b0 - atx * tb,
         b1 - aty * tb,
     )
+
+
+@njit(cache=True)
+def _tangential_impact(a00, a01, a10, a11, nx, ny, mu, slip):
+    """A body of articulated mass ``A`` (row major) sliding at ``slip`` along ``t = (-n_y, n_x)``
+    on an immovable support of normal ``n`` where no sliding motion fits (Painleve): the
+    velocity it has when the friction impulse along the cone's edge ``d = n - mu s t`` has
+    stopped the slip (``s`` its sign), ``(ok, vx, vy)``, a velocity ``v_n n`` into the support.
+
+    The impact goes on stuck: the support's impulse ``-v_n A n`` takes out ``v_n`` (plastic).
+    ``ok`` only if the impulse along ``d`` does stop the slip, pressing into the support, and
+    the stuck impulse lies in the friction cone; then friction opposes the slip and the normal
+    impulse the approach all through, and no energy is gained."""
+    tx = -ny
+    ty = nx
+    s = 1.0 if slip > 0.0 else -1.0
+    dx = nx - mu * s * tx
+    dy = ny - mu * s * ty
+    det = a00 * a11 - a01 * a10
+    if not det > 0.0:
+        return False, 0.0, 0.0
+    wx = (a11 * dx - a01 * dy) / det  # A^-1 d: the velocity per unit of normal impulse
+    wy = (a00 * dy - a10 * dx) / det
+    rate = wx * tx + wy * ty
+    if not rate * s < 0.0:
+        return False, 0.0, 0.0
+    impulse = -slip / rate
+    vn = impulse * (wx * nx + wy * ny)
+    if not vn <= 0.0:
+        return False, 0.0, 0.0
+    qx = -vn * (a00 * nx + a01 * ny)
+    qy = -vn * (a10 * nx + a11 * ny)
+    qn = qx * nx + qy * ny
+    if not (qn >= 0.0 and abs(qx * tx + qy * ty) <= mu * qn):
+        return False, 0.0, 0.0
+    return True, vn * nx, vn * ny
+
+
+@njit(cache=True)
+def _carry(F, order, parent, n, slide, mass, friction, roller, dv, vel, spin):
+    """Pass the base's change of velocity ``dv[0]`` up the pile as impulses through its
+    contacts in the modes ``slide`` (a stuck rider is carried along, a sliding one keeps its
+    normal velocity and takes an impulse along its cone's edge, which also turns a skidding
+    circle, ``roller[k]``), writing each body's change to ``dv`` and adding it to its velocity
+    in ``vel`` (and a skidding circle's turn to ``spin``). False if a contact's impulse would
+    pull, a stuck one's leave its friction cone, or a sliding one's slip turn round."""
+    for k in range(1, n):
+        p = order[k]
+        q = parent[k]
+        nx = F[p, L.REST_NX]
+        ny = F[p, L.REST_NY]
+        a00, a01, a10, a11 = mass[k, 0], mass[k, 1], mass[k, 2], mass[k, 3]
+        rx = -(a00 * dv[q, 0] + a01 * dv[q, 1])
+        ry = -(a10 * dv[q, 0] + a11 * dv[q, 1])
+        if slide[k] == 0:
+            normal = -(rx * nx + ry * ny)
+            along = -(-rx * ny + ry * nx)
+            if not (normal >= 0.0 and abs(along) <= friction[k] * normal):
+                return False
+            dv[k, 0] = dv[q, 0]
+            dv[k, 1] = dv[q, 1]
+            continue
+        _, u, normal = _sliding_response(a00, a01, a10, a11, nx, ny, friction[k], slide[k], rx, ry)
+        if not normal >= 0.0:
+            return False
+        dv[k, 0] = dv[q, 0] - u * ny
+        dv[k, 1] = dv[q, 1] + u * nx
+        if roller[k] != 0:
+            spin[k] += friction[k] * slide[k] * normal * F[p, L.RADIUS] * F[p, L.INV_INERTIA]
+    for k in range(n):
+        vel[k, 0] += dv[k, 0]
+        vel[k, 1] += dv[k, 1]
+    for k in range(1, n):
+        p = order[k]
+        q = parent[k]
+        relative = -(vel[k, 0] - vel[q, 0]) * F[p, L.REST_NY] + (vel[k, 1] - vel[q, 1]) * F[p, L.REST_NX]
+        if roller[k] != 0:
+            relative -= spin[k] * F[p, L.RADIUS]
+        if relative * slide[k] < 0.0:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _jolt(S, order, parent, n, t):
+    """Painleve's tangential impact: stop the pile's base sliding on its immovable support at
+    ``t`` by impulses through the pile's contacts; True if it stopped.
+
+    Where no sliding motion fits, the support's friction and normal force become impulsive
+    (Genot and Brogliato 1999; Stewart 2000): friction along the cone's edge stops the slip,
+    then a stuck, plastic impulse ends the approach it made (``_tangential_impact``), the base
+    left still. The riders answer through their contacts in the modes their motion gives them
+    (``_carry``; a stuck rolling circle is carried along, its slip kept), so momentum changes
+    only by the support's impulse. Refused where the impact is not of that form (a contact
+    would pull or change its mode on the way), where the base itself rolls, or where the
+    kinetic energy would rise (it cannot, but rounding is checked)."""
+    F = S[0]
+    I = S[1]
+    Q = S[4]
+    slide = np.empty(n, dtype=np.int64)
+    roller = np.zeros(n, dtype=np.int64)
+    vel = np.empty((n, 2))
+    spin = np.empty(n)
+    for k in range(n):
+        p = order[k]
+        slide[k] = _sliding_sign(S, p, t)
+        _, rolling = contact_slip(S, p, t)
+        roller[k] = 1 if rolling else 0
+        _, _, vel[k, 0], vel[k, 1] = state_at(F, p, t)
+        spin[k] = spin_at(F, p, t)
+    if roller[0] != 0:
+        return False
+    mass = np.empty((n, 4))
+    weight = np.empty((n, 2))
+    friction = np.empty(n)
+    if _articulate(F, I, Q, order, parent, n, slide, np.zeros(n), mass, weight, friction) >= 0:
+        return False
+    base = order[0]
+    nx = F[base, L.REST_NX]
+    ny = F[base, L.REST_NY]
+    slip = -vel[0, 0] * ny + vel[0, 1] * nx
+    ok, sx, sy = _tangential_impact(mass[0, 0], mass[0, 1], mass[0, 2], mass[0, 3], nx, ny, friction[0], slip)
+    if not ok:
+        return False
+    before = vel.copy()
+    spin_before = spin.copy()
+    dv = np.empty((n, 2))
+    for phase in range(2):  # sliding, then stuck: the base's velocity goes to v_n n, then to rest
+        dv[0, 0] = (sx if phase == 0 else 0.0) - vel[0, 0]
+        dv[0, 1] = (sy if phase == 0 else 0.0) - vel[0, 1]
+        if not _carry(F, order, parent, n, slide, mass, friction, roller, dv, vel, spin):
+            return False
+    change = 0.0
+    for k in range(n):
+        p = order[k]
+        change += (vel[k, 0] ** 2 + vel[k, 1] ** 2 - before[k, 0] ** 2 - before[k, 1] ** 2) / F[p, L.INV_MASS]
+        if roller[k] != 0:
+            change += (spin[k] ** 2 - spin_before[k] ** 2) / F[p, L.INV_INERTIA]
+    if not change <= 0.0:
+        return False
+    for k in range(n):
+        p = order[k]
+        advance(F, p, t)
+        F[p, L.VX] = vel[k, 0]
+        F[p, L.VY] = vel[k, 1]
+        F[p, L.OMEGA] = spin[k]
+    return True
 
 
 @njit(cache=True)
@@ -375,9 +549,10 @@ def settle_pile(S, base, t, out, count):
                 continue
             if what == _JAMS:
                 # No sliding motion fits (Painleve): the base sticks at once on its immovable
-                # support, all the pile carried along with it, if that takes energy out; else
-                # (and above the base) the contact lets go.
-                if k == 0 and _jam(F, I, order, n, t):
+                # support, by a tangential impact through the pile's contacts or else all the
+                # pile carried along with it, if that takes energy out; else (and above the
+                # base) the contact lets go.
+                if k == 0 and (_jolt(S, order, parent, n, t) or _jam(F, I, order, n, t)):
                     jolted = True
                     slide[0] = 0
                     held[0] = 1
