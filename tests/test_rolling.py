@@ -204,6 +204,8 @@ def test_ball_rolls_off_the_end_of_a_shelf_and_falls_spinning():
 # ------------------------------------------------------------------ in a pile
 
 
+@pytest.mark.xfail(strict=True, reason="rolling on a support that can move is switched off (contact.rolls): "
+                   "with it, 3 of 300 surveyed 5-body scenes stormed or gained energy (docs/rotation.md, Rolling)")
 def test_a_ball_rolling_on_a_box_pushed_along_ice_follows_it_at_a_third_of_its_acceleration():
     """The box (mass M, its own acceleration a0) on ice, a ball (m) at rest on it with friction: the
     box accelerates at A = M a0 / (M + m / 3), the ball rolls back on it, moving at A / 3 and turning
@@ -229,24 +231,24 @@ def test_a_ball_rolling_on_a_box_pushed_along_ice_follows_it_at_a_third_of_its_a
     assert ball.resting_on is box
 
 
-def test_a_ball_dropped_on_a_box_sliding_on_ice_keeps_the_momentum_and_ends_rolling():
+def test_a_ball_dropped_on_a_box_sliding_on_ice_keeps_the_momentum():
     """Only friction between the ball and the box acts horizontally: the horizontal momentum never
-    changes, the energy never rises, and the ball ends rolling on the box (no slip)."""
+    changes, the energy never rises, and the ball ends at rest on the box. (On a support that can
+    move a ball does not roll yet: it slides to a stop keeping its spin; rolling it would end with
+    no slip, v_ball - v_box + omega R = 0.)"""
     world = World(gravity=(0.0, -G), elasticity=0.3, bounds=(-2.0, -1.0, 8.0, 3.0))
     world.add_box(-2.0, -0.25, 10.0, 0.25, fixed=True, friction=0.0, name="floor")
     box = world.add_box(0.0, 0.0, 2.0, 0.125, mass=2.0, velocity=(1.5, 0.0), friction=0.0, name="box")
     ball = world.add_circle((1.8, 0.2), RADIUS, mass=1.0, angular_velocity=5.0, friction=0.05, name="ball")
     momentum = 2.0 * 1.5
     energy = mechanical_energy(world)
-    for event in world.events(1.5):
+    for event in world.events(3.0):
         if isinstance(event, Collision):
             now = mechanical_energy(world)
             assert now <= energy + 1e-12
             energy = now
             assert 2.0 * box.velocity[0] + ball.velocity[0] == pytest.approx(momentum, abs=1e-12)
     assert ball.resting_on is box
-    assert world.stats["contact_changes"] == 1  # it skidded until its slip stopped
     assert 2.0 * box.velocity[0] + ball.velocity[0] == pytest.approx(momentum, abs=1e-12)
-    slip = (ball.velocity[0] - box.velocity[0]) + ball.angular_velocity * RADIUS
-    assert slip == pytest.approx(0.0, abs=1e-9)
+    assert ball.velocity[0] - box.velocity[0] == pytest.approx(0.0, abs=1e-12)
     assert mechanical_energy(world) <= energy + 1e-12

@@ -7,9 +7,11 @@ not turn, so a pile is a tree of point masses joined by contacts, each with a fi
 normal ``n`` (from the support towards the rider) and tangent ``t = (-n_y, n_x)``. A contact
 either *sticks* (the rider's acceleration is its support's) or *slides* (the relative
 acceleration lies along ``t``, and friction ``-mu N s t`` opposes the slip, of sign ``s``);
-its normal force ``N`` must be positive. A circle on a face with friction turns too: its slip
-is ``v_t - omega R``, stuck it *rolls* (its centre gains ``u t`` and its spin ``u / R``, the
-friction ``-u I / R^2`` along ``t``), and sliding its friction turns it.
+its normal force ``N`` must be positive. A circle on a face of an immovable body with friction
+(``contact.rolls``; only a base can be one) turns too: its slip is ``v_t - omega R``, stuck it
+*rolls* (its centre gains ``u t`` and its spin ``u / R``, the friction ``-u I / R^2`` along
+``t``), and sliding its friction turns it. The solve handles a rolling rider on a moving support
+as well; ``contact.rolls`` keeps it out for now (docs/rotation.md, Rolling).
 
 ``contact.settle_acceleration`` settles one rider against its support's acceleration as
 given, which is exact on an immovable support; but a rider's weight and friction also load
