@@ -775,8 +775,9 @@ class World:
                 a = self._handles.get(int(out[L.OUT_A]))
                 b = self._handles.get(int(out[L.OUT_B]))
                 raise RuntimeError(
-                    f"event storm: {L.STORM_LIMIT} collisions at time {float(out[L.OUT_TIME])!r} without time "
-                    f"moving on, the last between {a.label() if a is not None else '?'} and {b.label() if b is not None else '?'}; "
+                    f"event storm: {L.STORM_LIMIT} collisions and contact changes within {L.STORM_SPAN:g} s of time "
+                    f"{float(out[L.OUT_TIME])!r}, the last between {a.label() if a is not None else '?'} and "
+                    f"{b.label() if b is not None else '?'}; "
                     "this is an engine bug, please report the scene"
                 )
             record = None

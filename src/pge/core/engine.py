@@ -528,8 +528,9 @@ def run(S, until, notify_all):
     COLLIDED: a collision that Python must hear about (``notify_all`` or a
     body flagged NOTIFY); its record is in ``out``. FIRED_TIMER, FIRED_FRAME:
     ``out[OUT_ID]`` names it. NEED_SPACE: grow the event arrays, call again.
-    EMPTY: no events are left. STORM: ``STORM_LIMIT`` collisions in a row
-    at one instant (a zero-time loop; ``out`` names the last pair).
+    EMPTY: no events are left. STORM: ``STORM_LIMIT`` collisions and contact changes in a
+    row within ``STORM_SPAN`` of one instant (a zero-time or Zeno loop; ``out`` names the
+    last pair).
     """
     I = S[1]
     P = S[3]
@@ -563,7 +564,7 @@ def run(S, until, notify_all):
                 continue
             P[L.TIME] = t
             stats[L.S_EVENTS] += 1
-            if t == instant:
+            if t - instant <= L.STORM_SPAN:
                 repeats += 1
                 if repeats >= L.STORM_LIMIT:
                     out[L.OUT_TIME] = t
@@ -588,6 +589,18 @@ def run(S, until, notify_all):
             P[L.TIME] = t
             stats[L.S_EVENTS] += 1
             if kind == L.CONTACT_EVENT:
+                # Rests and releases that converge on one instant (a Zeno run of contact
+                # changes) count towards a storm too, so that they raise instead of hanging.
+                if t - instant <= L.STORM_SPAN:
+                    repeats += 1
+                    if repeats >= L.STORM_LIMIT:
+                        out[L.OUT_TIME] = t
+                        out[L.OUT_A] = a
+                        out[L.OUT_B] = I[a, L.SUPPORT]
+                        return L.STORM
+                else:
+                    instant = t
+                    repeats = 0
                 stats[L.S_CONTACT_CHANGES] += 1
                 contact_change(S, a, feature, t)
             else:

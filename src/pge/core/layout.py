@@ -151,8 +151,9 @@ FIRED_TIMER = 2
 FIRED_FRAME = 3
 NEED_SPACE = 4  # grow the event arrays and call again
 EMPTY = 5  # no events left
-STORM = 6  # too many collisions at one instant: a zero-time loop (a bug), reported rather than hung
-STORM_LIMIT = 1_000_000  # consecutive collisions at one time that count as a storm
+STORM = 6  # too many events at one instant: a zero-time (or Zeno) loop (a bug), reported rather than hung
+STORM_LIMIT = 1_000_000  # consecutive collisions and contact changes within STORM_SPAN that count as a storm
+STORM_SPAN = 1e-9  # seconds: a storm's events all lie this close to its first
 
 # ---- outline array columns ------------------------------------------------------
 O_X, O_Y, O_NX, O_NY, O_LENGTH = 0, 1, 2, 3, 4
