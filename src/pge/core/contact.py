@@ -122,11 +122,18 @@ def contact_slip(S, r, t):
     mu = combine(F[r, L.FRICTION], F[I[r, L.SUPPORT], L.FRICTION], S[4][L.FRICTION_RULE])
     if not rolls(F, I, r, mu):
         return vt, False
+    return rolling_slip(F, r, vt, t), True
+
+
+@njit(cache=True, inline="always")
+def rolling_slip(F, r, vt, t):
+    """The slip ``vt - omega R`` at ``t`` of circle ``r`` whose centre moves at ``vt`` along
+    its rest's tangent relative to its support; exactly 0 within rounding of the two terms."""
     turn = spin_at(F, r, t) * F[r, L.RADIUS]
     slip = vt - turn
     if abs(slip) <= STILL_ULPS * (abs(vt) + abs(turn)):
-        slip = 0.0
-    return slip, True
+        return 0.0
+    return slip
 
 
 @njit(cache=True, inline="always")
@@ -167,7 +174,7 @@ def settle_acceleration(S, r, t):
     if rolls(F, I, r, mu):
         # A circle on a face: friction acts at its contact point, whose slip is vt - omega R,
         # and turns it as it pushes it (torque -R f along the tangent).
-        slip, _ = contact_slip(S, r, t)
+        slip = rolling_slip(F, r, vt, t)
         ratio = roll_ratio(F, r)
         radius = F[r, L.RADIUS]
         if slip == 0.0 and abs(at) <= limit * (1.0 + ratio):

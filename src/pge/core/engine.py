@@ -520,6 +520,24 @@ def contact_change(S, r, what, t):
 # ------------------------------------------------------------------- the loop
 
 
+@njit(cache=True, inline="always")
+def _storm_count(t, instant, repeats):
+    """The storm watch after an event at ``t``: ``(instant, repeats)``, the first time of the
+    current run of events within ``STORM_SPAN`` of each other's start and how many followed it."""
+    if t - instant <= L.STORM_SPAN:
+        return instant, repeats + 1
+    return t, 0
+
+
+@njit(cache=True, inline="always")
+def _storm(out, t, a, b):
+    """Report an event storm at ``t`` whose last event involved ``a`` and ``b``."""
+    out[L.OUT_TIME] = t
+    out[L.OUT_A] = a
+    out[L.OUT_B] = b
+    return L.STORM
+
+
 @njit(cache=True)
 def run(S, until, notify_all):
     """Process events up to time ``until``; return a code saying why it stopped.
@@ -564,16 +582,9 @@ def run(S, until, notify_all):
                 continue
             P[L.TIME] = t
             stats[L.S_EVENTS] += 1
-            if t - instant <= L.STORM_SPAN:
-                repeats += 1
-                if repeats >= L.STORM_LIMIT:
-                    out[L.OUT_TIME] = t
-                    out[L.OUT_A] = a
-                    out[L.OUT_B] = b
-                    return L.STORM
-            else:
-                instant = t
-                repeats = 0
+            instant, repeats = _storm_count(t, instant, repeats)
+            if repeats >= L.STORM_LIMIT:
+                return _storm(out, t, a, b)
             if collide(S, a, b, feature, t) == 0.0:
                 stats[L.S_GRAZES] += 1
                 continue
@@ -591,16 +602,9 @@ def run(S, until, notify_all):
             if kind == L.CONTACT_EVENT:
                 # Rests and releases that converge on one instant (a Zeno run of contact
                 # changes) count towards a storm too, so that they raise instead of hanging.
-                if t - instant <= L.STORM_SPAN:
-                    repeats += 1
-                    if repeats >= L.STORM_LIMIT:
-                        out[L.OUT_TIME] = t
-                        out[L.OUT_A] = a
-                        out[L.OUT_B] = I[a, L.SUPPORT]
-                        return L.STORM
-                else:
-                    instant = t
-                    repeats = 0
+                instant, repeats = _storm_count(t, instant, repeats)
+                if repeats >= L.STORM_LIMIT:
+                    return _storm(out, t, a, I[a, L.SUPPORT])
                 stats[L.S_CONTACT_CHANGES] += 1
                 contact_change(S, a, feature, t)
             else:

@@ -10,8 +10,8 @@ acceleration lies along ``t``, and friction ``-mu N s t`` opposes the slip, of s
 its normal force ``N`` must be positive. A circle on a face of an immovable body with friction
 (``contact.rolls``; only a base can be one) turns too: its slip is ``v_t - omega R``, stuck it
 *rolls* (its centre gains ``u t`` and its spin ``u / R``, the friction ``-u I / R^2`` along
-``t``), and sliding its friction turns it. The solve handles a rolling rider on a moving support
-as well; ``contact.rolls`` keeps it out for now (docs/rotation.md, Rolling).
+``t``), and sliding its friction turns it. Riders on a moving support do not roll
+(docs/rotation.md, Rolling).
 
 ``contact.settle_acceleration`` settles one rider against its support's acceleration as
 given, which is exact on an immovable support; but a rider's weight and friction also load
@@ -55,7 +55,7 @@ from pge.core.contact import (
     rolls,
     settle_acceleration,
 )
-from pge.core.motion import advance, spin_at, state_at
+from pge.core.motion import advance, state_at
 
 _FINE, _SLIPS, _LETS_GO, _CURVED, _JAMS = 0, 1, 2, 3, 4
 
@@ -98,12 +98,21 @@ def _walk(I, base, order, parent, fill):
 
 
 @njit(cache=True)
-def _articulate(F, I, Q, order, parent, n, slide, turning, mass, weight, friction):
+def _frictions(F, I, Q, order, n, friction):
+    """Fill ``friction`` with each contact's friction coefficient (the rider's and its
+    support's, combined by the world's rule)."""
+    for k in range(n):
+        p = order[k]
+        friction[k] = combine(F[p, L.FRICTION], F[I[p, L.SUPPORT], L.FRICTION], Q[L.FRICTION_RULE])
+
+
+@njit(cache=True)
+def _articulate(F, order, parent, n, slide, friction, mass, weight):
     """From the riders on top down to the base, fill each body's articulated mass matrix
     ``mass`` (row major) and weight ``weight`` (the force at zero acceleration) with all that
-    rests on it, for the contact modes in ``slide`` (a contact with ``turning[k] = I / R^2 > 0``
-    rolls), and each contact's friction coefficient ``friction``. Returns the first sliding
-    contact met (from the top) where no sliding motion fits (Painleve's paradox), or -1."""
+    rests on it, for the contact modes in ``slide`` and friction coefficients ``friction``.
+    Returns the first sliding contact met (from the top) where no sliding motion fits
+    (Painleve's paradox), or -1."""
     for k in range(n):
         p = order[k]
         m = 1.0 / F[p, L.INV_MASS]
@@ -113,9 +122,6 @@ def _articulate(F, I, Q, order, parent, n, slide, turning, mass, weight, frictio
         mass[k, 3] = m
         weight[k, 0] = m * F[p, L.FREE_AX]
         weight[k, 1] = m * F[p, L.FREE_AY]
-    for k in range(n):
-        p = order[k]
-        friction[k] = combine(F[p, L.FRICTION], F[I[p, L.SUPPORT], L.FRICTION], Q[L.FRICTION_RULE])
     for k in range(n - 1, 0, -1):
         p = order[k]
         nx = F[p, L.REST_NX]
@@ -123,10 +129,6 @@ def _articulate(F, I, Q, order, parent, n, slide, turning, mass, weight, frictio
         a00, a01, a10, a11 = mass[k, 0], mass[k, 1], mass[k, 2], mass[k, 3]
         b0, b1 = weight[k, 0], weight[k, 1]
         q = parent[k]
-        if turning[k] > 0.0:
-            # Rolling: f = A (a + u t) - b with f . t = -u I / R^2, so f = A' a - b' with
-            # A' = A - (A t)(t A) / (t A t + I / R^2) and b' = b - (A t)(t . b) / (the same).
-            a00, a01, a10, a11, b0, b1 = _rolling_mass(a00, a01, a10, a11, b0, b1, -ny, nx, turning[k])
         if slide[k] == 0:  # f = A a - b
             mass[q, 0] += a00
             mass[q, 1] += a01
@@ -178,8 +180,8 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
     """Solve the pile for the contact modes in ``slide`` (0: stuck, else the sign of the
     sliding), writing each body's acceleration to ``acc`` and angular acceleration to
     ``spin``. A ``held`` contact sticks whatever friction it needs (a neighbour takes the
-    rest). A circle on a face with friction (``contact.rolls``) that is stuck rolls: its
-    contact point stays on the support while its centre moves along the face.
+    rest). A base that is a circle on a face with friction (``contact.rolls``) rolls when
+    stuck: its contact point stays on the support while its centre moves along the face.
 
     Returns ``(k, what)``: the first contact (in ``order``, support first) that fails and
     how (``_SLIPS``: stuck but needing more friction than it has, with the sign it slides
@@ -190,15 +192,15 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
     mass = np.empty((n, 4))
     weight = np.empty((n, 2))
     friction = np.empty(n)
-    turning = np.zeros(n)  # I / R^2 of a stuck rolling circle, else 0
+    _frictions(F, I, Q, order, n, friction)
     for k in range(n):
-        p = order[k]
         spin[k] = 0.0
-        mu = combine(F[p, L.FRICTION], F[I[p, L.SUPPORT], L.FRICTION], Q[L.FRICTION_RULE])
-        if slide[k] == 0 and held[k] == 0 and rolls(F, I, p, mu):
-            radius = F[p, L.RADIUS]
-            turning[k] = 1.0 / (F[p, L.INV_INERTIA] * radius * radius)
-    k = _articulate(F, I, Q, order, parent, n, slide, turning, mass, weight, friction)
+    base = order[0]
+    turning = 0.0  # I / R^2 of a stuck rolling base, else 0 (only a base can roll)
+    if slide[0] == 0 and held[0] == 0 and rolls(F, I, base, friction[0]):
+        radius = F[base, L.RADIUS]
+        turning = 1.0 / (F[base, L.INV_INERTIA] * radius * radius)
+    k = _articulate(F, order, parent, n, slide, friction, mass, weight)
     if k >= 0:
         return k, _JAMS
     for k in range(n):
@@ -220,15 +222,16 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
             along = -(-rx * ny + ry * nx)
             acc[k, 0] = aqx
             acc[k, 1] = aqy
-            if turning[k] > 0.0:
-                # Rolling: the centre gains u along t = (-ny, nx), the contact force u (A t).
+            if k == 0 and turning > 0.0:
+                # Rolling: f = A (a + u t) - b with f . t = -u I / R^2: the centre gains u
+                # along t = (-ny, nx), the contact force u (A t).
                 atx = -a00 * ny + a01 * nx
                 aty = -a10 * ny + a11 * nx
-                u = -along / (-ny * atx + nx * aty + turning[k])
+                u = -along / (-ny * atx + nx * aty + turning)
                 acc[k, 0] -= u * ny
                 acc[k, 1] += u * nx
                 normal += u * (atx * nx + aty * ny)
-                along = -u * turning[k]
+                along = -u * turning
                 spin[k] = u / F[p, L.RADIUS]
             if not normal > 0.0:
                 return k, _LETS_GO
@@ -252,27 +255,6 @@ def _solve(F, I, Q, ground, order, parent, n, slide, held, acc, spin, t):
             if acc[q, 0] != 0.0 or acc[q, 1] != 0.0 or svx != 0.0 or svy != 0.0:
                 return k, _CURVED
     return -1, _FINE
-
-
-@njit(cache=True, inline="always")
-def _rolling_mass(a00, a01, a10, a11, b0, b1, tx, ty, turning):
-    """The articulated mass ``A'`` and weight ``b'`` with which a rolling circle (with what
-    rests on it: ``A``, ``b``) answers its support's acceleration, ``turning = I / R^2``:
-    along the tangent ``t`` its contact force also spins it up, so it resists less."""
-    atx = a00 * tx + a01 * ty  # A t
-    aty = a10 * tx + a11 * ty
-    tax = tx * a00 + ty * a10  # t A
-    tay = tx * a01 + ty * a11
-    denominator = tx * atx + ty * aty + turning
-    tb = (tx * b0 + ty * b1) / denominator
-    return (
-        a00 - atx * tax / denominator,
-        a01 - atx * tay / denominator,
-        a10 - aty * tax / denominator,
-        a11 - aty * tay / denominator,
-        b0 - atx * tb,
-        b1 - aty * tb,
-    )
 
 
 @njit(cache=True)
@@ -312,13 +294,13 @@ def _tangential_impact(a00, a01, a10, a11, nx, ny, mu, slip):
 
 
 @njit(cache=True)
-def _carry(F, order, parent, n, slide, mass, friction, roller, dv, vel, spin):
+def _carry(F, order, parent, n, slide, mass, friction, dv, vel):
     """Pass the base's change of velocity ``dv[0]`` up the pile as impulses through its
     contacts in the modes ``slide`` (a stuck rider is carried along, a sliding one keeps its
-    normal velocity and takes an impulse along its cone's edge, which also turns a skidding
-    circle, ``roller[k]``), writing each body's change to ``dv`` and adding it to its velocity
-    in ``vel`` (and a skidding circle's turn to ``spin``). False if a contact's impulse would
-    pull, a stuck one's leave its friction cone, or a sliding one's slip turn round."""
+    normal velocity and takes an impulse along its cone's edge), writing each body's change to
+    ``dv`` and adding it to its velocity in ``vel``. False if a contact's impulse would pull, a
+    stuck one's leave its friction cone, or a sliding one's slide turn round. (Riders do not
+    roll: ``contact.rolls``.)"""
     for k in range(1, n):
         p = order[k]
         q = parent[k]
@@ -340,8 +322,6 @@ def _carry(F, order, parent, n, slide, mass, friction, roller, dv, vel, spin):
             return False
         dv[k, 0] = dv[q, 0] - u * ny
         dv[k, 1] = dv[q, 1] + u * nx
-        if roller[k] != 0:
-            spin[k] += friction[k] * slide[k] * normal * F[p, L.RADIUS] * F[p, L.INV_INERTIA]
     for k in range(n):
         vel[k, 0] += dv[k, 0]
         vel[k, 1] += dv[k, 1]
@@ -349,8 +329,6 @@ def _carry(F, order, parent, n, slide, mass, friction, roller, dv, vel, spin):
         p = order[k]
         q = parent[k]
         relative = -(vel[k, 0] - vel[q, 0]) * F[p, L.REST_NY] + (vel[k, 1] - vel[q, 1]) * F[p, L.REST_NX]
-        if roller[k] != 0:
-            relative -= spin[k] * F[p, L.RADIUS]
         if relative * slide[k] < 0.0:
             return False
     return True
@@ -365,30 +343,26 @@ def _jolt(S, order, parent, n, t):
     (Genot and Brogliato 1999; Stewart 2000): friction along the cone's edge stops the slip,
     then a stuck, plastic impulse ends the approach it made (``_tangential_impact``), the base
     left still. The riders answer through their contacts in the modes their motion gives them
-    (``_carry``; a stuck rolling circle is carried along, its slip kept), so momentum changes
-    only by the support's impulse. Refused where the impact is not of that form (a contact
-    would pull or change its mode on the way), where the base itself rolls, or where the
-    kinetic energy would rise (it cannot, but rounding is checked)."""
+    (``_carry``), so momentum changes only by the support's impulse. Refused where the impact
+    is not of that form (a contact would pull or change its mode on the way), where the base
+    itself rolls, or where the kinetic energy would rise (it cannot, but rounding is checked)."""
     F = S[0]
     I = S[1]
     Q = S[4]
     slide = np.empty(n, dtype=np.int64)
-    roller = np.zeros(n, dtype=np.int64)
     vel = np.empty((n, 2))
-    spin = np.empty(n)
     for k in range(n):
         p = order[k]
-        slide[k] = _sliding_sign(S, p, t)
-        _, rolling = contact_slip(S, p, t)
-        roller[k] = 1 if rolling else 0
+        slip, rolling = contact_slip(S, p, t)
+        if rolling:
+            return False  # only a base can roll; its spin is not part of this impact
+        slide[k] = _sign(slip)
         _, _, vel[k, 0], vel[k, 1] = state_at(F, p, t)
-        spin[k] = spin_at(F, p, t)
-    if roller[0] != 0:
-        return False
     mass = np.empty((n, 4))
     weight = np.empty((n, 2))
     friction = np.empty(n)
-    if _articulate(F, I, Q, order, parent, n, slide, np.zeros(n), mass, weight, friction) >= 0:
+    _frictions(F, I, Q, order, n, friction)
+    if _articulate(F, order, parent, n, slide, friction, mass, weight) >= 0:
         return False
     base = order[0]
     nx = F[base, L.REST_NX]
@@ -398,19 +372,15 @@ def _jolt(S, order, parent, n, t):
     if not ok:
         return False
     before = vel.copy()
-    spin_before = spin.copy()
     dv = np.empty((n, 2))
     for phase in range(2):  # sliding, then stuck: the base's velocity goes to v_n n, then to rest
         dv[0, 0] = (sx if phase == 0 else 0.0) - vel[0, 0]
         dv[0, 1] = (sy if phase == 0 else 0.0) - vel[0, 1]
-        if not _carry(F, order, parent, n, slide, mass, friction, roller, dv, vel, spin):
+        if not _carry(F, order, parent, n, slide, mass, friction, dv, vel):
             return False
     change = 0.0
     for k in range(n):
-        p = order[k]
-        change += (vel[k, 0] ** 2 + vel[k, 1] ** 2 - before[k, 0] ** 2 - before[k, 1] ** 2) / F[p, L.INV_MASS]
-        if roller[k] != 0:
-            change += (spin[k] ** 2 - spin_before[k] ** 2) / F[p, L.INV_INERTIA]
+        change += (vel[k, 0] ** 2 + vel[k, 1] ** 2 - before[k, 0] ** 2 - before[k, 1] ** 2) / F[order[k], L.INV_MASS]
     if not change <= 0.0:
         return False
     for k in range(n):
@@ -418,7 +388,6 @@ def _jolt(S, order, parent, n, t):
         advance(F, p, t)
         F[p, L.VX] = vel[k, 0]
         F[p, L.VY] = vel[k, 1]
-        F[p, L.OMEGA] = spin[k]
     return True
 
 
@@ -454,9 +423,15 @@ def _jam(F, I, order, n, t):
 def _sliding_sign(S, x, t):
     """The sign of resting body ``x``'s slip on its support (``contact.contact_slip``; 0: none)."""
     slip, _ = contact_slip(S, x, t)
-    if slip > 0.0:
+    return _sign(slip)
+
+
+@njit(cache=True, inline="always")
+def _sign(value):
+    """1, -1 or 0 as ``value`` is positive, negative or zero."""
+    if value > 0.0:
         return 1
-    if slip < 0.0:
+    if value < 0.0:
         return -1
     return 0
 
@@ -538,9 +513,8 @@ def settle_pile(S, base, t, out, count):
         _walk(I, base, order, parent, True)
         ground = I[base, L.SUPPORT]
         slide = np.empty(n, dtype=np.int64)
-        for k in range(n):
-            slide[k] = _sliding_sign(S, order[k], t)
         held = np.zeros(n, dtype=np.int64)
+        _restart_slips(S, order, n, held, slide, t)
         jolted = False
         acc = np.empty((n, 2))
         spin = np.empty(n)
