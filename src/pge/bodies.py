@@ -142,7 +142,8 @@ class Body:
 
     @property
     def angular_velocity(self) -> float:
-        """Angular velocity in radians per second, anticlockwise (zero while fixed)."""
+        """Angular velocity in radians per second, anticlockwise, at the world's current time (zero
+        while fixed; it changes while a circle rolls or skids on a face)."""
         row, world = self._row()
         return float(row[L.OMEGA] + row[L.ALPHA] * (world.time - row[L.T0]))
 
