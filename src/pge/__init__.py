@@ -76,6 +76,7 @@ from pge.classic import (  # the classic PGE names: pge.classic.PGE_NAMES
     text,
     toFloat,
     update_fps,
+    velocity_damping,
     version_number,
     white,
 )

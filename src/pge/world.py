@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from typing import Callable, Iterator
 
 import numpy as np
@@ -20,6 +21,8 @@ from pge.bodies import Body
 from pge.core import engine, grid, motion, overlap, queue
 from pge.core import layout as L
 from pge.core.state import EngineState
+from pge.core.tuning import MIN_TICKS
+from pge.errors import EventStormError, OverlapWarning, TooFastError
 from pge.events import Collision, Frame, Stop, Timer
 from pge.geometry import check_number, check_vector
 from pge.response import RESTITUTION_RULES, restitution_rule
@@ -67,6 +70,14 @@ class World:
     * ``rest_height``: a bounce that would rise less than this times the
       body's bounding radius ends in resting contact (default 1e-4): the body
       then rests or slides on the surface instead of bouncing for ever.
+    * ``allow_overlap``: False (default) refuses to run while two bodies
+      overlap (ValueError naming them); True lets each overlapping pair pass
+      through each other until it has separated, with one ``OverlapWarning``
+      per pair, as PGE does (the classic ``pge`` module sets it).
+
+    A run raises ``pge.errors.TooFastError`` for a body too fast for the
+    clock, and ``pge.errors.EventStormError`` for a run of events the clock
+    cannot separate (docs/architecture.md, "Progress").
 
     Time starts at 0. ``run_until(t)`` processes every event up to ``t``;
     ``events(until)`` yields them one by one; ``time`` is the current time,
@@ -84,6 +95,7 @@ class World:
         skin: float | None = None,
         friction_rule: str = "max",
         rest_height: float = 1e-4,
+        allow_overlap: bool = False,
     ) -> None:
         self._gravity = check_vector("World", "gravity", gravity)
         self._default_elasticity = _check_elasticity("World", elasticity)
@@ -106,6 +118,9 @@ class World:
         self._state.Q[L.FRICTION_RULE] = _RULE_CODES[friction_rule]
         self._state.P[L.REST_HEIGHT] = _positive("World", "rest_height", rest_height)
         self._state.P[L.OVERLAP_TOLERANCE] = OVERLAP_TOLERANCE
+        if not isinstance(allow_overlap, bool):
+            raise TypeError(f"World: allow_overlap must be True or False, got {allow_overlap!r}")
+        self._allow_overlap = allow_overlap
         self._handles: dict[int, Body] = {}
         self._primed = False
         self._unchecked: set[int] = set()
@@ -772,14 +787,9 @@ class World:
                 state.ensure_events(0)
                 continue
             if code == L.STORM:
-                a = self._handles.get(int(out[L.OUT_A]))
-                b = self._handles.get(int(out[L.OUT_B]))
-                raise RuntimeError(
-                    f"event storm: {L.STORM_LIMIT} collisions and contact changes within {L.STORM_SPAN:g} s of time "
-                    f"{float(out[L.OUT_TIME])!r}, the last between {a.label() if a is not None else '?'} and "
-                    f"{b.label() if b is not None else '?'}; "
-                    "this is an engine bug, please report the scene"
-                )
+                raise self._storm_error()
+            if code == L.TOO_FAST:
+                raise self._too_fast_error()
             record = None
             if code == L.COLLIDED:
                 a = self._handles.get(int(out[L.OUT_A]))
@@ -824,6 +834,71 @@ class World:
             if self._stop_requested:
                 self._stop_requested = False
                 return
+
+    def _describe(self, i: int) -> str:
+        """What body ``i`` is doing now, for an error message."""
+        body = self._handles.get(i)
+        if body is None:
+            return "?"
+        F, I = self._state.F, self._state.I
+        (x, y), (vx, vy) = body.position, body.velocity
+        text = f"{body.label()} at ({x:.6g}, {y:.6g}) moving at ({vx:.4g}, {vy:.4g})"
+        if I[i, L.KIND] != 0 and F[i, L.OMEGA] != 0.0:
+            text += f" spinning at {F[i, L.OMEGA]:.4g} rad/s"
+        if I[i, L.FIXED]:
+            text += " (fixed)"
+        support = int(I[i, L.SUPPORT])
+        if support >= 0 and support in self._handles:
+            mode = "sliding" if I[i, L.REST_MODE] == L.SLIDING else "stuck"
+            text += f", resting ({mode}) on {self._handles[support].label()}"
+        return text
+
+    def _storm_error(self) -> EventStormError:
+        """The progress watch found a run of events the clock cannot separate."""
+        state = self._state
+        out, Q = state.out, state.Q
+        when = float(out[L.OUT_TIME])
+        ids = [int(out[k]) for k in (L.OUT_A, L.OUT_B) if int(out[k]) >= 0]
+        names = ("collisions", "contact changes", "horizons", "timers", "frames")
+        kinds = {name: int(Q[L.STORM_KINDS + k]) for k, name in enumerate(names) if Q[L.STORM_KINDS + k]}
+        span = when - float(state.P[L.STORM_START])
+        ticks = span / max(math.ulp(when), 5e-324)
+        # The next run starts afresh, so that the caller may change the scene and go on.
+        state.P[L.STORM_START] = -_INF
+        state.Q[L.STORM_RUN] = 0
+        made = ", ".join(f"{count} {name}" for name, count in kinds.items())
+        where = "; ".join(self._describe(i) for i in ids) or "no body (timers or frames)"
+        return EventStormError(
+            f"event storm at time {when!r}: {int(Q[L.STORM_CAP])} events ({made}) within {span:.3g} s "
+            f"({ticks:.3g} ticks of the clock), more than the clock can separate; the last involved {where}. "
+            "Something is speeding a body up without bound or trapping it at one instant",
+            when,
+            tuple(self._handles[i] for i in ids if i in self._handles),
+            kinds,
+        )
+
+    def _too_fast_error(self) -> TooFastError:
+        """A body's travel step is shorter than the clock can resolve."""
+        state = self._state
+        i = int(state.Q[L.FAST_BODY])
+        state.Q[L.FAST_BODY] = -1
+        when = self.time
+        F = state.F
+        body = self._handles.get(i)
+        vx, vy = body.velocity if body is not None else (0.0, 0.0)
+        spin = abs(F[i, L.OMEGA]) * F[i, L.REACH] if state.I[i, L.KIND] != 0 else 0.0
+        speed = math.hypot(vx, vy) + spin
+        tick = math.ulp(when) if when > 0.0 else 5e-324
+        return TooFastError(
+            f"{self._describe(i)} at time {when!r} is faster than the world can represent: one tick of the "
+            f"clock ({tick:.3g} s) carries it {speed * tick:.3g}, and its travel step {self._travel:.3g} takes "
+            f"fewer than {MIN_TICKS:g} ticks, so its collisions cannot be resolved. Slow it down (something may "
+            "be speeding it up without bound)",
+            when,
+            (body,) if body is not None else (),
+            speed,
+            tick,
+        )
 
     def _notify(self, record: Collision) -> None:
         if self._collision_hooks and any(b is not None and b.id in self._watchers for b in (record.a, record.b)):
@@ -929,16 +1004,42 @@ class World:
     # ------------------------------------------------------------- validation
 
     def _check(self, ids) -> None:
-        """Raise ValueError if a moving body of ``ids`` lacks a mass or overlaps a body."""
+        """Raise ValueError if a moving body of ``ids`` lacks a mass or overlaps a body (with
+        ``allow_overlap``, excuse each overlapping pair instead, with a warning)."""
         state = self._state
         for i in ids:
             if not state.I[i, L.FIXED] and math.isnan(state.F[i, L.MASS]):
                 raise ValueError(f"{self._handles[i].label()} is moving but has no mass; give it a mass or fix it")
+        if self._allow_overlap:
+            self._excuse_overlaps(ids)
+            return
         i, j, depth = overlap.find_overlap(state.S, np.asarray(ids, dtype=np.int64), OVERLAP_TOLERANCE)
         if i >= 0:
             raise ValueError(
                 f"{self._handles[i].label()} overlaps {self._handles[j].label()} by {depth:.3g} "
                 f"at time {self.time!r}; bodies must not overlap when the world runs"
+            )
+
+    def _excuse_overlaps(self, ids) -> None:
+        """Let every pair of ``ids`` (with any body) that overlaps now pass through each other
+        until it has separated, warning once per pair."""
+        state = self._state
+        wanted = set(ids)
+        known = {tuple(row) for row in state.excused[: int(state.Q[L.EXCUSED_N])]}
+        F = state.F
+        for a, b, depth in self.overlaps():
+            pair = (min(a.id, b.id), max(a.id, b.id))
+            if pair in known or not (a.id in wanted or b.id in wanted):
+                continue
+            if depth <= OVERLAP_TOLERANCE * (F[a.id, L.REACH] + F[b.id, L.REACH]):
+                continue
+            state.excuse(*pair)
+            known.add(pair)
+            warnings.warn(
+                f"{a.label()} overlaps {b.label()} by {depth:.3g} at time {self.time!r}; they will not collide "
+                "until they have separated",
+                OverlapWarning,
+                stacklevel=4,
             )
 
     def overlap_depth(self, a: Body, b: Body) -> float:

@@ -65,6 +65,7 @@ from pge.classic.runloop import (
     runpy,
     slow_down,
     update_fps,
+    velocity_damping,
 )
 from pge.classic.runloop import save_frame as save_frame  # not a PGE name: pge.classic only
 from pge.classic.session import STATE as _STATE
@@ -105,7 +106,7 @@ __all__ = [
     "batch_d", "pyg_d", "no_event", "frame_event", "collision_event", "function_event", "spring_event",
     "final_event", "program_name", "version_number", "framesPerSecond", "Black",
     # extensions
-    "poly5", "poly6", "polygon", "elasticity", "get_time",
+    "poly5", "poly6", "polygon", "elasticity", "get_time", "velocity_damping",
 ]  # fmt: skip
 
 #: every public name of the original PGE module, plus the extensions.

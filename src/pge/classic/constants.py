@@ -28,6 +28,8 @@ __all__ = [
     "DEFAULT_FPS",
     "DEFAULT_ELASTICITY",
     "DEFAULT_GRAVITY",
+    "VELOCITY_DAMPING",
+    "STILL_COMPONENT",
     "KIND_NAMES",
 ]
 
@@ -47,6 +49,11 @@ Black = (0, 0, 0)
 DEFAULT_FPS = 100.0
 #: elasticity of every object until ``elasticity()`` is called.
 DEFAULT_ELASTICITY = 0.98
+#: the factor the original's velocity reads and writes multiply both components by (its
+#: ``checkStationary``); ``velocity_damping(1.0)`` turns it off.
+VELOCITY_DAMPING = 0.98
+#: velocity components below this (in size) are set to 0 when a read or write damps them
+STILL_COMPONENT = 0.01
 #: the default of ``gravity(value=...)``: y acceleration in world units per second squared.
 DEFAULT_GRAVITY = -9.81
 

@@ -20,6 +20,7 @@ import math
 
 from pge.classic.constants import (
     KIND_NAMES,
+    STILL_COMPONENT,
     box_t,
     circle_t,
     colour_t,
@@ -207,12 +208,13 @@ class Object:
         return list(self._asked("get_unit_coord", "position")._position())
 
     def get_xvel(self) -> float:
-        """x velocity now (reading never changes it)."""
-        return self._asked("get_xvel", "velocity")._velocity()[0]
+        """x velocity now, after the original's damping of both components (see
+        ``pge.velocity_damping``; with ``velocity_damping(1.0)`` a read changes nothing)."""
+        return self._asked("get_xvel", "velocity")._damp()[0]
 
     def get_yvel(self) -> float:
-        """y velocity now (reading never changes it)."""
-        return self._asked("get_yvel", "velocity")._velocity()[1]
+        """y velocity now, after the original's damping of both components (see ``get_xvel``)."""
+        return self._asked("get_yvel", "velocity")._damp()[1]
 
     def get_xaccel(self) -> float:
         """The object's own x acceleration (without gravity)."""
@@ -223,14 +225,17 @@ class Object:
         return self._asked("get_yaccel", "acceleration")._user_accel[1]
 
     def put_xvel(self, f):
-        """Set the x velocity, keeping y; returns None (not chainable, as in PGE)."""
+        """Set the x velocity, keeping y, then damp both components as the original did (see
+        ``get_xvel``); returns None (not chainable, as in PGE)."""
         shape = self._shape("put_xvel", "give a velocity to", "a velocity")
         shape._set_velocity((finite("put_xvel", "f", f), shape._velocity()[1]))
+        shape._damp()
 
     def put_yvel(self, f):
-        """Set the y velocity, keeping x; returns None."""
+        """Set the y velocity, keeping x, then damp both components (see ``put_xvel``); returns None."""
         shape = self._shape("put_yvel", "give a velocity to", "a velocity")
         shape._set_velocity((shape._velocity()[0], finite("put_yvel", "f", f)))
+        shape._damp()
 
     def put_xaccel(self, f):
         """Set the object's own x acceleration; returns None."""
@@ -559,6 +564,19 @@ class Shape(Object):
         if self._body is None or self._fixed:
             return self._v
         return self._body.velocity
+
+    def _damp(self) -> tuple[float, float]:
+        """The original's velocity damping on a read or write (its ``checkStationary``): both
+        components times ``STATE.damping``, those then below ``STILL_COMPONENT`` set to 0.
+        Returns the velocity after it."""
+        v = self._velocity()
+        factor = STATE.damping
+        if factor == 1.0:
+            return v
+        damped = tuple(0.0 if abs(c * factor) < STILL_COMPONENT else c * factor for c in v)
+        if damped != tuple(v):
+            self._set_velocity(damped)
+        return damped
 
     def _set_velocity(self, v) -> None:
         if self._body is None or self._fixed:

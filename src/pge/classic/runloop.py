@@ -16,7 +16,7 @@ import warnings
 
 from pge.classic import frames
 from pge.classic.colours import is_colour, rgb, white
-from pge.classic.constants import DEFAULT_GRAVITY, batch_d, pyg_d, version_number
+from pge.classic.constants import DEFAULT_GRAVITY, VELOCITY_DAMPING, batch_d, pyg_d, version_number
 from pge.classic.constructors import text
 from pge.classic.events import at_time
 from pge.classic.session import STATE, finite, is_headless, positive
@@ -133,6 +133,21 @@ def elasticity(e) -> None:
     for obj in STATE.shapes:
         if obj._own_elasticity is None and obj._body is not None:
             STATE.world.set_elasticity(obj._body, e)
+
+
+def velocity_damping(factor=VELOCITY_DAMPING) -> None:
+    """How ``get_xvel``, ``get_yvel``, ``put_xvel`` and ``put_yvel`` damp the object, now and later.
+
+    The original PGE multiplied both velocity components by 0.98 (and set components below
+    0.01 to zero) on every such read or write, and its games are tuned against that: a
+    callback doing ``put_xvel(get_xvel() * 1.15)`` nets about 1.06 there. pge does the same
+    by default. ``velocity_damping(1.0)`` makes reads and writes exact (a read then never
+    changes anything); any factor in (0, 1] may be given. Not a name of the original module.
+    """
+    factor = finite("velocity_damping", "factor", factor)
+    if not 0.0 < factor <= 1.0:
+        raise ValueError(f"velocity_damping: factor must be in (0.0, 1.0], got {factor!r}")
+    STATE.damping = factor
 
 
 def get_time() -> float:

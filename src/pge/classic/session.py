@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import os
 
-from pge.classic.constants import DEFAULT_ELASTICITY, DEFAULT_FPS
+from pge.classic.constants import DEFAULT_ELASTICITY, DEFAULT_FPS, VELOCITY_DAMPING
 from pge.geometry import check_number
 from pge.world import World
 
@@ -37,6 +37,7 @@ class Session:
         self.slow = 1.0
         self.gravity = 0.0  # world gravity, y component
         self.elasticity = DEFAULT_ELASTICITY
+        self.damping = VELOCITY_DAMPING  # velocity reads and writes multiply by this (1.0: off)
         self.shapes: dict = {}  # level-0 objects (pending or in the World), creation order
         self.springs: dict = {}  # spring objects (pge.classic.springs) in creation order
         self.levels: dict[int, dict] = {}  # level != 0 -> eye-candy objects in creation order
@@ -74,7 +75,7 @@ class Session:
     def world(self) -> World:
         """The World this session drives, made on first use."""
         if self._world is None:
-            self._world = World(gravity=(0.0, self.gravity), elasticity=self.elasticity)
+            self._world = World(gravity=(0.0, self.gravity), elasticity=self.elasticity, allow_overlap=True)
             self._world.on_frame(self._on_frame)
         return self._world
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from pge.core import layout as L
@@ -44,6 +45,7 @@ from pge.core.predict import new_mark, place, predict
 from pge.core.response import apply_impulse, contact_response
 from pge.core.sleep import try_sleep, wake
 from pge.core.queue import pop_earliest
+from pge.core.tuning import STORM_SPAN, STORM_TICKS
 from pge.toi.circle_circle import circle_circle_contact
 from pge.toi.circle_polygon import circle_polygon_contact
 from pge.toi.polygon_polygon import polygon_polygon_contact
@@ -521,21 +523,38 @@ def contact_change(S, r, what, t):
 
 
 @njit(cache=True, inline="always")
-def _storm_count(t, instant, repeats):
-    """The storm watch after an event at ``t``: ``(instant, repeats)``, the first time of the
-    current run of events within ``STORM_SPAN`` of each other's start and how many followed it."""
-    if t - instant <= L.STORM_SPAN:
-        return instant, repeats + 1
-    return t, 0
+def watch(S, t, kind):
+    """Count an event of ``kind`` at ``t`` in the progress watch; True if it makes a storm.
+
+    A run is a sequence of events each within ``max(STORM_SPAN, STORM_TICKS * cap)`` clock
+    ticks of the run's first; ``cap`` events in one run are more than the clock can
+    separate (a zero-time loop, a Zeno run converging on an instant, a clock creeping a few
+    ulps per event). The count lives in the state, so returns to Python for callbacks,
+    timers and frames do not restart it.
+    """
+    P = S[3]
+    Q = S[4]
+    cap = Q[L.STORM_CAP]
+    tick = np.nextafter(t, _INF) - t
+    span = max(STORM_SPAN, STORM_TICKS * cap * tick)
+    if t - P[L.STORM_START] <= span:
+        Q[L.STORM_RUN] += 1
+    else:
+        P[L.STORM_START] = t
+        Q[L.STORM_RUN] = 0
+        for k in range(5):
+            Q[L.STORM_KINDS + k] = 0
+    Q[L.STORM_KINDS + kind] += 1
+    return Q[L.STORM_RUN] >= cap
 
 
 @njit(cache=True, inline="always")
-def _storm(out, t, a, b):
-    """Report an event storm at ``t`` whose last event involved ``a`` and ``b``."""
+def _report(out, t, a, b, code):
+    """Name the event at ``t`` between ``a`` and ``b`` (-1: none) that stopped the loop."""
     out[L.OUT_TIME] = t
     out[L.OUT_A] = a
     out[L.OUT_B] = b
-    return L.STORM
+    return code
 
 
 @njit(cache=True)
@@ -546,9 +565,10 @@ def run(S, until, notify_all):
     COLLIDED: a collision that Python must hear about (``notify_all`` or a
     body flagged NOTIFY); its record is in ``out``. FIRED_TIMER, FIRED_FRAME:
     ``out[OUT_ID]`` names it. NEED_SPACE: grow the event arrays, call again.
-    EMPTY: no events are left. STORM: ``STORM_LIMIT`` collisions and contact changes in a
-    row within ``STORM_SPAN`` of one instant (a zero-time or Zeno loop; ``out`` names the
-    last pair).
+    EMPTY: no events are left. STORM: the progress watch (``watch``) found a run of
+    events the clock cannot separate; ``out`` names the last event's bodies. TOO_FAST:
+    ``Q[FAST_BODY]``'s travel step is shorter than the clock can resolve (``place``);
+    nothing has used its box.
     """
     I = S[1]
     P = S[3]
@@ -559,9 +579,9 @@ def run(S, until, notify_all):
     slot_data = S[11]
     stats = S[13]
     out = S[14]
-    instant = -_INF
-    repeats = 0
     while True:
+        if Q[L.FAST_BODY] >= 0:
+            return _report(out, P[L.TIME], Q[L.FAST_BODY], -1, L.TOO_FAST)
         if not drain_predictions(S) or Q[L.FREE_N] < Q[L.MIN_FREE]:
             return L.NEED_SPACE
         if Q[L.HEAP_N] == 0:
@@ -576,15 +596,21 @@ def run(S, until, notify_all):
         count_a = slot_data[slot, 2]
         count_b = slot_data[slot, 3]
         feature = slot_data[slot, 4]
-        if kind == L.COLLISION:
-            if I[a, L.COUNT] != count_a or I[b, L.COUNT] != count_b:
+        if kind == L.COLLISION or kind == L.CONTACT_EVENT or kind == L.HORIZON_EVENT:
+            if I[a, L.COUNT] != count_a or (kind == L.COLLISION and I[b, L.COUNT] != count_b):
                 stats[L.S_STALE] += 1
                 continue
-            P[L.TIME] = t
+        P[L.TIME] = t
+        if watch(S, t, kind):
+            if kind == L.CONTACT_EVENT:
+                b = I[a, L.SUPPORT]
+            elif kind != L.COLLISION:
+                b = -1
+            if kind >= L.TIMER:
+                a = -1
+            return _report(out, t, a, b, L.STORM)
+        if kind == L.COLLISION:
             stats[L.S_EVENTS] += 1
-            instant, repeats = _storm_count(t, instant, repeats)
-            if repeats >= L.STORM_LIMIT:
-                return _storm(out, t, a, b)
             if collide(S, a, b, feature, t) == 0.0:
                 stats[L.S_GRAZES] += 1
                 continue
@@ -593,30 +619,19 @@ def run(S, until, notify_all):
                 stats[L.S_PAIR_COLLISIONS] += 1
             if notify_all or I[a, L.NOTIFY] != 0 or I[b, L.NOTIFY] != 0:
                 return L.COLLIDED
-        elif kind == L.CONTACT_EVENT or kind == L.HORIZON_EVENT:
-            if I[a, L.COUNT] != count_a:
-                stats[L.S_STALE] += 1
-                continue
-            P[L.TIME] = t
+        elif kind == L.CONTACT_EVENT:
             stats[L.S_EVENTS] += 1
-            if kind == L.CONTACT_EVENT:
-                # Rests and releases that converge on one instant (a Zeno run of contact
-                # changes) count towards a storm too, so that they raise instead of hanging.
-                instant, repeats = _storm_count(t, instant, repeats)
-                if repeats >= L.STORM_LIMIT:
-                    return _storm(out, t, a, I[a, L.SUPPORT])
-                stats[L.S_CONTACT_CHANGES] += 1
-                contact_change(S, a, feature, t)
-            else:
-                stats[L.S_HORIZONS] += 1
-                touch(S, a)
+            stats[L.S_CONTACT_CHANGES] += 1
+            contact_change(S, a, feature, t)
+        elif kind == L.HORIZON_EVENT:
+            stats[L.S_EVENTS] += 1
+            stats[L.S_HORIZONS] += 1
+            touch(S, a)
         elif kind == L.TIMER:
-            P[L.TIME] = t
             out[L.OUT_TIME] = t
             out[L.OUT_ID] = a
             return L.FIRED_TIMER
         else:
-            P[L.TIME] = t
             out[L.OUT_TIME] = t
             out[L.OUT_ID] = a
             out[L.OUT_EPOCH] = b

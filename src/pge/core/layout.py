@@ -62,7 +62,8 @@ TRAVEL = 5  # distance a moving body may travel within one horizon
 MARGIN = 6  # safety margin added to every swept box
 OVERLAP_TOLERANCE = 7
 REST_HEIGHT = 8  # a bounce lower than this times the body's bounding radius becomes resting contact
-NP = 9
+STORM_START = 9  # time of the first event of the current run of close events (the progress watch)
+NP = 10
 
 # ---- Q: int64 world parameters -----------------------------------------------
 GRID_NX, GRID_NY = 0, 1
@@ -77,7 +78,12 @@ PENDING_N = 9  # bodies waiting in `pending` to be predicted
 PENDING_DONE = 10  # how many of them are done
 PENDING_MARK = 11  # pair-once mark of the current batch
 PILES_N = 12  # resting bodies in `piles` whose pile must be solved again before the event ends
-NQ = 13
+STORM_RUN = 13  # events in the current run of close events (the progress watch), kept across returns
+STORM_CAP = 14  # events a run may hold before it is a storm (set by Python from the number of bodies)
+FAST_BODY = 15  # a body whose travel step the clock cannot resolve (-1: none), found by `place`
+STORM_KINDS = 16  # first of five counts, one per event kind, of the current run
+EXCUSED_N = 21  # pairs in `excused`: they overlapped when the run began and do not collide yet
+NQ = 22
 
 # ---- stats: int64 counters ---------------------------------------------------
 STAT_NAMES = (
@@ -151,9 +157,8 @@ FIRED_TIMER = 2
 FIRED_FRAME = 3
 NEED_SPACE = 4  # grow the event arrays and call again
 EMPTY = 5  # no events left
-STORM = 6  # too many events at one instant: a zero-time (or Zeno) loop (a bug), reported rather than hung
-STORM_LIMIT = 1_000_000  # consecutive collisions and contact changes within STORM_SPAN that count as a storm
-STORM_SPAN = 1e-9  # seconds: a storm's events all lie this close to its first
+STORM = 6  # a run of events the clock cannot separate: a zero-time, Zeno or creeping loop
+TOO_FAST = 7  # a body moves too fast for the clock (``Q[FAST_BODY]`` names it)
 
 # ---- outline array columns ------------------------------------------------------
 O_X, O_Y, O_NX, O_NY, O_LENGTH = 0, 1, 2, 3, 4

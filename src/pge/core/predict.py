@@ -19,7 +19,9 @@ from pge.broadphase.bounds import cannot_touch_before, swept_range, travel_horiz
 from pge.core import layout as L
 from pge.core.grid import file_in_cell, gather
 from pge.core.motion import kernel_angle, orient, state_at
+from pge.core.overlap import overlap_depth
 from pge.core.queue import push
+from pge.core.tuning import MIN_TICKS
 from pge.toi.circle_circle import circle_circle
 from pge.toi.circle_polygon import circle_polygon
 from pge.toi.polygon_polygon import polygon_polygon
@@ -38,11 +40,26 @@ def spinning(F, I, i):
 
 
 @njit(cache=True, inline="always")
+def at_or_before(now, dt):
+    """``now + dt`` rounded down: the clock value at or before ``dt`` from ``now``.
+
+    Event times must never be rounded past what they stand for: a contact time rounded up
+    can put a fast body's centre beyond a thin wall's mid-line, and a horizon rounded up
+    fires after the end of the span its box was swept over.
+    """
+    t = now + dt
+    if t - now > dt:
+        t = np.nextafter(t, -_INF)
+    return t
+
+
+@njit(cache=True, inline="always")
 def place(S, i):
     """Give body ``i`` a horizon and a swept box from now; file a moving body in the grid."""
     F = S[0]
     I = S[1]
     P = S[3]
+    Q = S[4]
     now = P[L.TIME]
     orient(F, I, S[2], S[18], i, now)
     ax = F[i, L.AX]
@@ -64,10 +81,17 @@ def place(S, i):
         # A speed of 1e-310 (denormal, left by a long decay) overflows the span to inf, and
         # v * inf would make the box infinite, which the grid cannot file.
         span = min(span, _LONGEST_SPAN)
-        horizon = now + span
-        if horizon <= now:
-            horizon = np.nextafter(now, _INF)
-            span = horizon - now
+        # The box covers exactly [now, horizon] as the clock holds them: rounded to nearest,
+        # the horizon could fire after the span swept and leave part of the path uncovered.
+        horizon = at_or_before(now, span)
+        if horizon - now < MIN_TICKS * (np.nextafter(now, _INF) - now):
+            # The clock cannot resolve this body's travel step: refuse it before any event
+            # uses the box (the loop raises); its box stays valid for the one tick it has.
+            if Q[L.FAST_BODY] < 0:
+                Q[L.FAST_BODY] = i
+            if horizon <= now:
+                horizon = np.nextafter(now, _INF)
+        span = horizon - now
         x0, x1 = swept_range(x, vx, ax, span)
         y0, y1 = swept_range(y, vy, ay, span)
     margin = P[L.MARGIN]
@@ -154,6 +178,8 @@ def predict(S, i, mark):
         if cannot_touch_before(dx, dy, dvx, dvy, dax, day, F[i, L.REACH] + F[j, L.REACH], window):
             stats[L.S_BOUND_REJECTS] += 1
             continue
+        if S[4][L.EXCUSED_N] > 0 and still_excused(S, i, j):
+            continue
         stats[L.S_PREDICTIONS] += 1
         still = still_speed(F, i, j, ix, iy, ivx, ivy, jx, jy, jvx, jvy)
         jkind = I[j, L.KIND]
@@ -198,7 +224,7 @@ def predict(S, i, mark):
         if feature == CHECKPOINT:
             # The rotating search ran out of budget: no contact before now + t; look
             # again from there.
-            push(S, now + t, (L.HORIZON_EVENT << L.KIND_SHIFT) | i, i, -1, I[i, L.COUNT], 0, 0)
+            push(S, at_or_before(now, t), (L.HORIZON_EVENT << L.KIND_SHIFT) | i, i, -1, I[i, L.COUNT], 0, 0)
             continue
         if t != _INF:
             stats[L.S_HITS] += 1
@@ -206,7 +232,27 @@ def predict(S, i, mark):
                 key = (i << L.ID_SHIFT) | j
             else:
                 key = (j << L.ID_SHIFT) | i
-            push(S, now + t, key, first, second, I[first, L.COUNT], I[second, L.COUNT], feature)
+            push(S, at_or_before(now, t), key, first, second, I[first, L.COUNT], I[second, L.COUNT], feature)
+
+
+@njit(cache=True)
+def still_excused(S, i, j):
+    """Whether ``i`` and ``j`` are a pair that overlapped when the run began and overlap
+    still (they do not collide); a pair found apart is no longer excused."""
+    excused = S[20]
+    Q = S[4]
+    a = min(i, j)
+    b = max(i, j)
+    for k in range(Q[L.EXCUSED_N]):
+        if excused[k, 0] == a and excused[k, 1] == b:
+            if overlap_depth(S, i, j) > 0.0:
+                return True
+            last = Q[L.EXCUSED_N] - 1
+            excused[k, 0] = excused[last, 0]
+            excused[k, 1] = excused[last, 1]
+            Q[L.EXCUSED_N] = last
+            return False
+    return False
 
 
 @njit(cache=True)

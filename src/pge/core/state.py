@@ -11,6 +11,7 @@ import math
 import numpy as np
 
 from pge.core import layout as L
+from pge.core.tuning import STORM_LIMIT, STORM_PER_BODY
 
 
 class EngineState:
@@ -41,12 +42,15 @@ class EngineState:
         self.Q[L.FREE_N] = event_capacity
         self.Q[L.GRID_NX] = self.Q[L.GRID_NY] = 1
         self.P[L.CELL_SIZE] = self.P[L.INV_CELL] = 1.0
+        self.P[L.STORM_START] = -np.inf
+        self.Q[L.FAST_BODY] = -1
         self.stats = np.zeros(L.NSTATS, dtype=np.int64)
         self.out = np.zeros(L.NOUT)
         self.scratch = np.zeros(capacity, dtype=np.int64)
         self.pending = np.zeros(4 * capacity + 16, dtype=np.int64)
         self.group = np.zeros(4 * capacity + 16, dtype=np.int64)
         self.piles = np.zeros(4 * capacity + 16, dtype=np.int64)
+        self.excused = np.zeros((4, 2), dtype=np.int64)  # pairs that may overlap until they separate
         self._update_min_free()
         self.refresh()
 
@@ -73,12 +77,26 @@ class EngineState:
             self.group,
             self.OB,
             self.piles,
+            self.excused,
         )
+
+    def excuse(self, i: int, j: int) -> None:
+        """Let bodies ``i`` and ``j``, which overlap now, pass until they have separated."""
+        n = int(self.Q[L.EXCUSED_N])
+        if n == self.excused.shape[0]:
+            grown = np.zeros((2 * n, 2), dtype=np.int64)
+            grown[:n] = self.excused
+            self.excused = grown
+            self.refresh()
+        self.excused[n] = (min(i, j), max(i, j))
+        self.Q[L.EXCUSED_N] = n + 1
 
     def _update_min_free(self) -> None:
         # One event touches at most every body once (two pushes each: horizon and
         # contact change); one prediction pushes at most one event per other body.
         self.Q[L.MIN_FREE] = 3 * self.n + 16
+        # N bodies may legitimately meet at one instant (a row of balls landing together).
+        self.Q[L.STORM_CAP] = STORM_LIMIT + STORM_PER_BODY * self.n
 
     # ------------------------------------------------------------- growth
 
