@@ -28,6 +28,7 @@ G = -9.81
 DURATION = 10.0
 
 pge.interactive()
+pge.velocity_damping(1.0)  # the energy check reads velocities: reads must not damp them
 pge.display_set_mode([800, 800])
 pge.slow_down(2.0)
 pge.elasticity(1.0)

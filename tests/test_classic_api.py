@@ -111,6 +111,7 @@ EXTENSION_FUNCTIONS = {
     "polygon": "(points, colour, level=0)",
     "elasticity": "(e)",
     "get_time": "()",
+    "velocity_damping": "(factor=0.98)",
 }
 EXTENSION_OBJECT_METHODS = {
     "elasticity": "(self, e)",

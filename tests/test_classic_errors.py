@@ -152,13 +152,18 @@ def test_colours_work_before_a_device_is_chosen_and_devices_do_not_switch():
     assert pge.classic._STATE.device == pge.batch_d
 
 
-def test_overlapping_objects_are_refused_when_the_run_starts():
-    """Two moving objects placed overlapping raise ValueError naming both (no silent push apart)."""
+def test_overlapping_objects_run_with_one_warning_naming_both():
+    """Two moving objects placed overlapping run, as in the original: one OverlapWarning names
+    both (no silent push apart), and they pass through each other until they separate."""
+    from pge.errors import OverlapWarning
+
     pge.circle(0.5, 0.5, 0.05, pge.white()).mass(1)
     pge.circle(0.52, 0.5, 0.05, pge.white()).mass(1)
-    with pytest.raises(
-        ValueError,
+    with pytest.warns(
+        OverlapWarning,
         match=r"circle \(0.5, 0.5, 0.05\).* overlaps .*circle \(0.52, 0.5, 0.05\)|"
         r"circle \(0.52, 0.5, 0.05\).* overlaps .*circle \(0.5, 0.5, 0.05\)",
-    ):
+    ) as caught:
         pge.run(0.1)
+    assert len(caught) == 1
+    assert pge.get_time() == pytest.approx(0.1)

@@ -43,12 +43,27 @@ def spinning(F, I, i):
 def at_or_before(now, dt):
     """``now + dt`` rounded down: the clock value at or before ``dt`` from ``now``.
 
-    Event times must never be rounded past what they stand for: a contact time rounded up
-    can put a fast body's centre beyond a thin wall's mid-line, and a horizon rounded up
-    fires after the end of the span its box was swept over.
+    A horizon must not be rounded past the span its box was swept over: rounded up, it would
+    fire after the end of the span, and a wall in the part of the path left uncovered would
+    never be predicted.
     """
     t = now + dt
     if t - now > dt:
+        t = np.nextafter(t, -_INF)
+    return t
+
+
+@njit(cache=True, inline="always")
+def contact_time(now, dt, closing, allowance):
+    """The clock value for a contact ``dt`` after ``now`` between bodies closing at most at
+    ``closing``: ``now + dt`` rounded to nearest, unless rounding up would carry them more than
+    ``allowance`` (the overlap tolerated everywhere, 1e-9 of their sizes) into each other; then
+    rounded down. A body fast enough for that could otherwise be advanced past a thin wall's
+    mid-line, where the wall's far face is nearer and a second contact at the same instant
+    sends it through."""
+    t = now + dt
+    excess = (t - now) - dt
+    if excess > 0.0 and excess * closing > allowance:
         t = np.nextafter(t, -_INF)
     return t
 
@@ -224,7 +239,7 @@ def predict(S, i, mark):
         if feature == CHECKPOINT:
             # The rotating search ran out of budget: no contact before now + t; look
             # again from there.
-            push(S, at_or_before(now, t), (L.HORIZON_EVENT << L.KIND_SHIFT) | i, i, -1, I[i, L.COUNT], 0, 0)
+            push(S, now + t, (L.HORIZON_EVENT << L.KIND_SHIFT) | i, i, -1, I[i, L.COUNT], 0, 0)
             continue
         if t != _INF:
             stats[L.S_HITS] += 1
@@ -232,7 +247,13 @@ def predict(S, i, mark):
                 key = (i << L.ID_SHIFT) | j
             else:
                 key = (j << L.ID_SHIFT) | i
-            push(S, at_or_before(now, t), key, first, second, I[first, L.COUNT], I[second, L.COUNT], feature)
+            closing = (
+                math.hypot(dvx, dvy) + math.hypot(dax, day) * t
+                + abs(F[i, L.OMEGA]) * F[i, L.REACH] + abs(F[j, L.OMEGA]) * F[j, L.REACH]
+            )
+            allowance = P[L.OVERLAP_TOLERANCE] * (F[i, L.REACH] + F[j, L.REACH])
+            when = contact_time(now, t, closing, allowance)
+            push(S, when, key, first, second, I[first, L.COUNT], I[second, L.COUNT], feature)
 
 
 @njit(cache=True)
