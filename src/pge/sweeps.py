@@ -238,7 +238,9 @@ def parse_param(text: str) -> tuple[str, list]:
     """``NAME=VALUES`` (the text of one ``--param``) as ``(name, values)``; see parse_values."""
     name, sep, spec = text.partition("=")
     if not sep:
-        raise SweepUsageError(f"--param must be NAME=VALUES (e.g. density=0.05:0.4:8 or elasticity=0.9,1.0), got {text!r}")
+        raise SweepUsageError(
+            f"--param must be NAME=VALUES (e.g. density=0.05:0.4:8 or elasticity=0.9,1.0), got {text!r}"
+        )
     name = _check_name(name.strip())
     return name, parse_values(name, spec)
 
@@ -256,7 +258,9 @@ def _value(name: str, value):
         if not math.isfinite(value):
             raise ValueError(f"parameter {name!r}: value {value!r} is not finite")
         return value
-    raise TypeError(f"parameter {name!r}: values must be numbers, booleans or strings, got {type(value).__name__} {value!r}")
+    raise TypeError(
+        f"parameter {name!r}: values must be numbers, booleans or strings, got {type(value).__name__} {value!r}"
+    )
 
 
 def _normalise_params(params) -> dict[str, list]:
@@ -308,7 +312,9 @@ def parse_seeds(text: str) -> list[int]:
     except ValueError as error:
         if isinstance(error, SweepUsageError):
             raise
-        raise SweepUsageError(f"--seeds must be a count (20) or a comma list of whole numbers (1,5,9), got {text!r}") from None
+        raise SweepUsageError(
+            f"--seeds must be a count (20) or a comma list of whole numbers (1,5,9), got {text!r}"
+        ) from None
     if len(set(seeds)) != len(seeds):
         raise SweepUsageError(f"--seeds lists a seed twice: {text!r}")
     return seeds
@@ -398,7 +404,8 @@ class SceneFile:
         function = getattr(module, self.function, None)
         if not callable(function):
             raise SweepUsageError(
-                f"{self.path} defines no function {self.function!r} (expected: def {self.function}(seed, **params) -> pge.World)"
+                f"{self.path} defines no function {self.function!r} "
+                f"(expected: def {self.function}(seed, **params) -> pge.World)"
             )
         return function
 
@@ -827,9 +834,8 @@ def sweep(
                             summary.failed += 1
                             if summary.first_failure is None:
                                 where = ", ".join(f"{k}={v!r}" for k, v in combo.items())
-                                summary.first_failure = (
-                                    f"seed {seed}{', ' + where if where else ''}: {row['error_type']}: {row['error_message']}"
-                                )
+                                where = f"seed {seed}" + (f", {where}" if where else "")
+                                summary.first_failure = f"{where}: {row['error_type']}: {row['error_message']}"
                         table = row_table(run, combo, seed, row)
                         if store is not None:
                             store.write(run, table, collisions)
