@@ -23,6 +23,7 @@ from pge import sweeps
 pd = pytest.importorskip("pandas")  # the test extra brings pandas, pyarrow and dask: this never skips in CI
 from dask.distributed import Client, LocalCluster  # noqa: E402
 
+GAS_STUDY = Path(__file__).resolve().parents[1] / "examples" / "studies" / "gas_sweep.py"
 STATS = ("events", "collisions", "pair_collisions", "horizons", "predictions")
 
 # A small gas: 20 discs for 1 simulated second, a few hundred events, well under a second a run.
@@ -181,7 +182,7 @@ def test_local_cluster_rows_equal_in_process_runs(scene_file, tmp_path):
 
 def test_a_failing_run_is_a_row_with_its_error_and_events_are_recorded(client):
     """A closure scene (cloudpickled to the workers) that raises for one seed; --events' table."""
-    build = runpy.run_path(str(Path(__file__).resolve().parents[1] / "examples" / "gas_sweep.py"))["scene"]
+    build = runpy.run_path(str(GAS_STUDY))["scene"]
     refused = 1
 
     def scene(seed, density):

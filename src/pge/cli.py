@@ -35,7 +35,7 @@ examples:
   pge sweep gas.py -p density=0.1 --seeds 3,7 --until 5 --out results/ --scheduler tcp://10.0.0.5:8786
   python -c "import pandas; print(pandas.read_parquet('results/runs'))"
 
-Runs already in OUT (same scene name, parameters, seed and --until) are not run again, so a sweep
+Runs already in DIR (same scene name, parameters, seed and --until) are not run again, so a sweep
 that was stopped can be started again with the same command.
 """
 
@@ -344,7 +344,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Run SCENE.py's scene(seed, **params) for every combination of the --param values and "
         "every seed, on an embedded Dask LocalCluster (one worker process per core) or on the cluster of "
         "--scheduler, and write one row per run (parameters, seed, times, world.stats, kinetic energy, "
-        "momentum, error) to the Parquet dataset OUT/runs; with --events every collision to OUT/events. "
+        "momentum, error) to the Parquet dataset DIR/runs; with --events every collision to DIR/events. "
         "Needs the sweep extra: pip install 'pge[sweep]'.",
         epilog=_EPILOG_SWEEP,
         formatter_class=argparse.RawDescriptionHelpFormatter,

@@ -3,9 +3,9 @@
 This file is both a scene for ``pge sweep`` (it defines ``scene(seed, **params)``) and the study
 that runs the sweep, averages the seeds and draws the plot::
 
-    python examples/gas_sweep.py                          # the study: sweep, table, plot
-    python examples/gas_sweep.py --seeds 4 --until 5      # quicker
-    pge sweep examples/gas_sweep.py --param density=0.05:0.4:8 --seeds 20 --until 10 --out results/gas
+    python examples/studies/gas_sweep.py                          # the study: sweep, table, plot
+    python examples/studies/gas_sweep.py --seeds 4 --until 5      # quicker
+    pge sweep examples/studies/gas_sweep.py --param density=0.05:0.4:8 --seeds 20 --until 10 --out results/gas
 
 It needs the sweep and plot extras: ``pip install -e '.[sweep,plot]'``. docs/sweeps.md shows
 the result and derives the formula.
