@@ -21,6 +21,7 @@ import pge
 from pge import sweeps
 
 pd = pytest.importorskip("pandas")  # the test extra brings pandas, pyarrow and dask: this never skips in CI
+import dask  # noqa: E402
 from dask.distributed import Client, LocalCluster  # noqa: E402
 
 GAS_STUDY = Path(__file__).resolve().parents[1] / "examples" / "studies" / "gas_sweep.py"
@@ -67,7 +68,9 @@ def scene_file(tmp_path):
 @pytest.fixture(scope="module")
 def client():
     """One 2-worker LocalCluster for the tests that do not test making one."""
-    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
+    # A task whose worker dies is given up at once (not retried on 3 more workers): see the KilledWorker test.
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
+        cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
     client = Client(cluster)
     try:
         yield client
@@ -209,6 +212,20 @@ def test_a_failing_run_is_a_row_with_its_error_and_events_are_recorded(client):
     assert set(events.run_id) == set(good.run_id)
     assert ((events.time >= 0) & (events.time <= 0.5)).all() and (events.impulse > 0).all()
     assert ((events.normal_x**2 + events.normal_y**2 - 1).abs() < 1e-9).all()
+
+
+def test_a_run_that_kills_its_worker_is_a_row_and_the_others_go_on(client):
+    build = runpy.run_path(str(GAS_STUDY))["scene"]
+
+    def scene(seed):
+        if seed == 1:
+            os._exit(3)  # the worker process dies: no exception reaches the sweep, only Dask's verdict
+        return build(seed, n=12)
+
+    runs = pge.sweep(scene, seeds=3, until=0.2, client=client, progress=False)
+    assert list(runs.error_type.fillna("")) == ["", "KilledWorker", ""]
+    assert (runs.collisions.fillna(0) > 0).tolist() == [True, False, True]
+    client.wait_for_workers(2, timeout=60)  # the nanny has started a new worker for the next tests
 
 
 def test_resume_skips_written_runs_and_retries_failed_ones_on_request(client, scene_file, tmp_path, monkeypatch):
