@@ -9,6 +9,10 @@ Two front doors to one engine:
   Gaius Mulley's PGE and implemented in ``pge.classic`` over ``pge.World``.
   ``pge.framesPerSecond`` follows ``pge.fps()``, as the original's module
   variable did.
+
+``pge.sweep(scene, params, seeds=..., until=...)`` runs a scene for every
+combination of parameters and seeds on Dask and returns a pandas DataFrame
+(the optional ``sweep`` extra; see ``pge.sweeps``).
 """
 
 from pge import _jit_cache  # noqa: F401  (must come first: it configures the kernel cache)
@@ -98,8 +102,22 @@ __all__ = [
     "Frame",
     "Stop",
     "__version__",
+    "sweep",
     *_classic.__all__,  # the classic PGE API (without the classes object and event)
 ]
+
+
+def sweep(scene, params=None, **options):
+    """Run ``scene(seed, **params) -> World`` for every combination of ``params`` and seeds on Dask.
+
+    Returns a pandas DataFrame with one row per run. A thin front for
+    ``pge.sweeps.sweep`` (see there for every option: ``seeds``, ``until``,
+    ``out``, ``events``, ``scheduler``, ``client``, ``workers``, ...), kept
+    here so that ``import pge`` does not import dask, pyarrow or pandas.
+    """
+    from pge.sweeps import sweep as run_sweep
+
+    return run_sweep(scene, params, **options)
 
 
 def __getattr__(name):

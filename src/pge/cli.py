@@ -1,4 +1,4 @@
-"""The ``pge`` command line: showcase, info, play, export, run.
+"""The ``pge`` command line: showcase, info, play, export, run, sweep.
 
 Every failure the user can cause (missing file, a file that is not a
 recording, a damaged recording, bad options) ends with one line
@@ -19,6 +19,24 @@ examples:
   pge export run.pgerec frames/                 every frame as frames/frame_00000.png, ...
   pge export run.pgerec run.gif --fps 25        an animated GIF at 25 frames per second
   pge export run.pgerec run.mp4 --size 1280x720 --start 2 --end 10
+"""
+
+
+_EPILOG_SWEEP = """\
+the scene file defines (the name can be changed with SCENE.py:NAME):
+  def scene(seed, **params) -> pge.World       called with the seed and one value of every --param
+
+values:
+  NAME=A:B:N        N evenly spaced values from A to B (ints if A, B and the step are whole)
+  NAME=V1,V2,...    a list: ints stay ints, then floats, true/false, else text
+
+examples:
+  pge sweep gas.py --param density=0.05:0.4:8 --param elasticity=0.9,1.0 --seeds 20 --until 10 --out results/
+  pge sweep gas.py -p density=0.1 --seeds 3,7 --until 5 --out results/ --scheduler tcp://10.0.0.5:8786
+  python -c "import pandas; print(pandas.read_parquet('results/runs'))"
+
+Runs already in DIR (same scene name, parameters, seed and --until) are not run again, so a sweep
+that was stopped can be started again with the same command.
 """
 
 
@@ -155,6 +173,89 @@ def _play(args) -> int:
     return 0
 
 
+def _sweep_param(text: str):
+    from pge.sweeps import SweepUsageError, parse_param
+
+    try:
+        return parse_param(text)
+    except SweepUsageError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
+def _sweep_seeds(text: str):
+    from pge.sweeps import SweepUsageError, parse_seeds
+
+    try:
+        return parse_seeds(text)
+    except SweepUsageError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 1, got {text!r}")
+    return value
+
+
+def _duration(text: str) -> float:
+    value = _time(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be a time >= 0 in seconds, got {text!r}")
+    return value
+
+
+def _sweep(args) -> int:
+    from pge import sweeps
+
+    def usage(message: str) -> int:
+        print(f"pge: error: {message} (see 'pge sweep --help')", file=sys.stderr)
+        return 2
+
+    try:
+        sweeps._require_extras()
+    except sweeps.MissingExtraError as error:
+        print(f"pge: error: {error}", file=sys.stderr)
+        return 1
+    params = {}
+    for name, values in args.param:
+        if name in params:
+            return usage(f"--param {name} is given twice")
+        params[name] = values
+    summary = sweeps.SweepSummary()
+    try:
+        sweeps.sweep(
+            args.scene,
+            params,
+            seeds=args.seeds,
+            until=args.until,
+            out=args.out,
+            events=args.events,
+            scheduler=args.scheduler,
+            workers=args.workers,
+            progress=not args.quiet,
+            retry_failed=args.retry_failed,
+            summary=summary,
+        )
+    except sweeps.SweepUsageError as error:
+        return usage(str(error))
+    except sweeps.SweepLockedError as error:
+        print(f"pge: error: {error}", file=sys.stderr)
+        return 1
+    if not args.quiet:
+        out = os.path.join(args.out, "runs")
+        print(
+            f"pge sweep: {summary.total} runs ({summary.ran} run now, {summary.skipped} already written, "
+            f"{summary.failed} failed) in {out}" + (f" and {os.path.join(args.out, 'events')}" if args.events else "")
+        )
+        if summary.first_failure:
+            print(f"pge sweep: first failure: {summary.first_failure}")
+    return 0
+
+
 def _add_file(command) -> None:
     command.add_argument("file", metavar="FILE", help="a pge recording (.pgerec) or an original PGE output.raw")
     command.add_argument(
@@ -236,6 +337,51 @@ def build_parser() -> argparse.ArgumentParser:
     export.add_argument("--end", type=_time, default=None, metavar="T", help="last time in seconds (default: end)")
     export.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no summary line")
     export.set_defaults(handler=_export)
+
+    sweep = commands.add_parser(
+        "sweep",
+        help="run a scene for every combination of parameters and seeds on Dask; one Parquet row per run",
+        description="Run SCENE.py's scene(seed, **params) for every combination of the --param values and "
+        "every seed, on an embedded Dask LocalCluster (one worker process per core) or on the cluster of "
+        "--scheduler, and write one row per run (parameters, seed, times, world.stats, kinetic energy, "
+        "momentum, error) to the Parquet dataset DIR/runs; with --events every collision to DIR/events. "
+        "Needs the sweep extra: pip install 'pge[sweep]'.",
+        epilog=_EPILOG_SWEEP,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    sweep.add_argument("scene", metavar="SCENE.py", help="a Python file defining scene(seed, **params) -> pge.World")
+    sweep.add_argument(
+        "-p",
+        "--param",
+        action="append",
+        default=[],
+        type=_sweep_param,
+        metavar="NAME=VALUES",
+        help="a swept parameter: NAME=A:B:N or NAME=V1,V2,... (repeat for more; every combination is run)",
+    )
+    sweep.add_argument(
+        "--seeds",
+        type=_sweep_seeds,
+        default=[0],
+        metavar="N|S1,S2,...",
+        help="N for seeds 0 to N-1, or a comma list of seeds (default: seed 0 only)",
+    )
+    sweep.add_argument(
+        "--until", type=_duration, required=True, metavar="T", help="simulated seconds each run is run to"
+    )
+    sweep.add_argument("--out", required=True, metavar="DIR", help="output directory (DIR/runs, DIR/events)")
+    sweep.add_argument("--events", action="store_true", help="also write every collision to DIR/events")
+    sweep.add_argument(
+        "--scheduler", metavar="ADDRESS", help="a running Dask scheduler, e.g. tcp://10.0.0.5:8786 (default: local)"
+    )
+    sweep.add_argument(
+        "--workers", type=_count, default=None, help="worker processes of the local cluster (default: one per core)"
+    )
+    sweep.add_argument(
+        "--retry-failed", action="store_true", help="run again the runs in DIR that recorded an error"
+    )
+    sweep.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no summary line")
+    sweep.set_defaults(handler=_sweep)
 
     from pge.classic.script import add_run_command
 
