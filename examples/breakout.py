@@ -20,9 +20,9 @@ out, the lives left and the balls used.
 
 import sys
 
+import pge  # first: it keeps pygame from printing its banner
 from pygame.locals import K_ESCAPE, K_LEFT, K_RIGHT, KEYDOWN, KEYUP, QUIT
-
-import pge
+from pge.classic.runloop import headless  # True without a window (PGE_HEADLESS=1 or pge.batch())
 
 WALL = 0.01
 PADDLE_SPEED = 0.6
@@ -55,7 +55,7 @@ def show_score():
 
 def game_over(words, x):
     pge.text(x, 0.5, words, white, 80, 2)
-    if not pge.headless():
+    if not headless():
         pge.text(0.32, 0.4, "Escape or close the window to quit", white, 24, 2)
 
 
@@ -104,7 +104,7 @@ def floor_hit(floor_object, event):
 floor.on_collision(floor_hit)
 new_ball()
 show_score()
-if not pge.headless():
+if not headless():
     pge.text(0.52, 0.97, "left/right arrows: paddle   Esc: quit", white, 22, 1)
 
 
@@ -144,5 +144,5 @@ pge.register_handler(key_up, [KEYUP])
 pge.register_handler(quit_game, [QUIT])
 pge.at_time(1.0, tick)
 # a window plays on until the player quits (the game's end stays on screen); headless runs DURATION
-pge.run(DURATION if pge.headless() else -1)
+pge.run(DURATION if headless() else -1)
 result()

@@ -24,9 +24,9 @@ left is on the cloth.
 import math
 import sys
 
+import pge  # first: it keeps pygame from printing its banner
 from pygame.locals import K_ESCAPE, KEYDOWN, MOUSEBUTTONDOWN, QUIT
-
-import pge
+from pge.classic.runloop import headless  # True without a window (PGE_HEADLESS=1 or pge.batch())
 
 X0, Y0, X1, Y1 = 0.08, 0.08, 1.70, 0.89  # the cloth inside the cushions
 R = 0.026
@@ -36,7 +36,7 @@ SHOT = 0.9  # impulse of a shot (the cue ball's mass is 1)
 
 pge.interactive()
 pge.display_set_mode([1000, 560])
-DEMO = pge.headless() or "--demo" in sys.argv[1:]  # only a demo shoots by itself
+DEMO = headless() or "--demo" in sys.argv[1:]  # only a demo shoots by itself
 pge.slow_down(1.0)
 
 cushion = pge.rgb(0.25, 0.15, 0.08)

@@ -4,7 +4,7 @@
 ``World.record`` are thin methods over the functions here, so the World
 class stays about the physics. ``check_escapes`` runs at the end of each
 run (never per event): it warns, once per body, about a moving body that has
-left the world's bounds and can no longer come back.
+left the world's bounds (and every fixed body) and can no longer come back.
 """
 
 from __future__ import annotations
@@ -30,8 +30,8 @@ ANIMATE_RATE = 30.0
 
 
 class LeftWorldWarning(UserWarning):
-    """A moving body left the world's bounds moving away, and its acceleration cannot
-    turn it back: nothing inside the bounds will ever touch it again."""
+    """A moving body left the world's bounds, beyond every fixed body, moving away, and its
+    acceleration cannot turn it back: no wall will ever touch it again."""
 
 
 def picture_size(bounds, size) -> tuple[int, int]:
@@ -115,26 +115,35 @@ def animate(world, until, frame_rate=None, title=None):
 
 def check_escapes(world, stacklevel: int = 3) -> None:
     """Warn (``LeftWorldWarning``, once per body) about each moving body that is wholly
-    outside the world's bounds on some side, moving away from them, with an acceleration
-    that is zero or points away too: on its own it can never come back."""
+    outside the world's bounds and every fixed body on some side, moving away from them,
+    with an acceleration that is zero or points away too: on its own it can never come back."""
     handles = world._handles
     if not handles:
         return
     warned = world.__dict__.setdefault("_escape_warned", set())
     state = world._state
-    ids = np.fromiter(handles, dtype=np.int64, count=len(handles))
-    ids = ids[state.I[ids, L.FIXED] == 0]
+    every = np.fromiter(handles, dtype=np.int64, count=len(handles))
+    still = state.I[every, L.FIXED] != 0
+    ids, fixed = every[~still], every[still]
     if not len(ids):
         return
     F = state.F
-    dt = world.time - F[ids, L.T0]
+
+    def now(rows, p0, v0, a):
+        acc = F[rows, a]
+        dt = world.time - F[rows, L.T0]
+        return F[rows, p0] + (F[rows, v0] + 0.5 * acc * dt) * dt, F[rows, v0] + acc * dt, acc
+
     reach = F[ids, L.REACH]
     x0, y0, x1, y1 = world.bounds
     gone = np.zeros(len(ids), dtype=bool)
     for p0, v0, a, low, high in ((L.X, L.VX, L.AX, x0, x1), (L.Y, L.VY, L.AY, y0, y1)):
-        acc = F[ids, a]
-        vel = F[ids, v0] + acc * dt
-        pos = F[ids, p0] + (F[ids, v0] + 0.5 * acc * dt) * dt
+        if len(fixed):
+            # walls may stand outside the bounds (a wide window's table): the world reaches them too
+            where = now(fixed, p0, v0, a)[0]
+            low = min(low, float((where - F[fixed, L.REACH]).min()))
+            high = max(high, float((where + F[fixed, L.REACH]).max()))
+        pos, vel, acc = now(ids, p0, v0, a)
         gone |= (pos - reach > high) & (vel > 0) & (acc >= 0)
         gone |= (pos + reach < low) & (vel < 0) & (acc <= 0)
     for i in ids[gone].tolist():
@@ -145,8 +154,8 @@ def check_escapes(world, stacklevel: int = 3) -> None:
         (x, y), (vx, vy) = body.position, body.velocity
         warnings.warn(
             f"{body.label()} left the world's bounds {world.bounds} at t = {world.time:g} s, at ({x:.4g}, {y:.4g}) "
-            f"moving away at ({vx:.4g}, {vy:.4g}), and its acceleration cannot bring it back: nothing inside "
-            "the bounds will touch it again (add walls, or give World(bounds=...) room for it)",
+            f"moving away at ({vx:.4g}, {vy:.4g}), and its acceleration cannot bring it back: no wall or "
+            "fixed body will touch it again (add walls, or give World(bounds=...) room for it)",
             LeftWorldWarning,
             stacklevel=stacklevel,
         )
