@@ -214,3 +214,58 @@ def test_no_warning_for_a_body_that_falls_back_in():
         ball = world.bodies[1]
         assert ball.position[1] > 1.5 and ball.velocity[1] > 0  # out and moving away, but gravity turns it
         world.run_until(3.0)
+
+
+def test_pge_view_prints_the_url_serves_and_stops_on_ctrl_c(small):
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PYTHONUNBUFFERED="1")
+    process = subprocess.Popen(
+        [sys.executable, "-m", "pge.cli", "view", str(small), "--no-browser"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+    )
+    try:
+        line = process.stdout.readline()
+        found = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+        assert found, line + process.stderr.read()
+        status, body, _ = get(found.group(0) + "data.json")
+        assert status == 200 and len(json.loads(body)["frames"]) == 11
+        process.send_signal(signal.SIGINT)  # what Ctrl-C sends
+        assert process.wait(timeout=30) == 0
+        assert "stopped" in process.stderr.read()
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+
+
+def test_a_recording_shows_inline_in_a_notebook(small):
+    html = open_recording(small)._repr_html_()
+    assert html.startswith("<iframe srcdoc=") and "small.pgerec" in html
+
+
+def test_a_removed_bodys_handle_raises_value_error():
+    world = box_world()
+    ball = world.bodies[1]
+    world.remove(ball)
+    assert not ball.alive
+    with pytest.raises(ValueError, match="has been removed from its world"):
+        ball.position
+    with pytest.raises(ValueError, match="has been removed from its world"):
+        world.set_velocity(ball, (1.0, 0.0))
+
+
+def test_the_notebook_demo_runs_as_a_script(tmp_path, monkeypatch):
+    import runpy
+    from pathlib import Path
+
+    monkeypatch.chdir(tmp_path)
+    runpy.run_path(str(Path(__file__).parent.parent / "examples" / "notebook_demo.py"), run_name="__main__")
+    assert Image.open(tmp_path / "out" / "notebook_demo.png").size == (800, 800)
+    assert len(embedded((tmp_path / "out" / "notebook_demo.html").read_text())["frames"]) == 61
