@@ -140,7 +140,13 @@ def _view(args) -> int:
     except OSError as error:
         raise OSError(f"cannot serve on 127.0.0.1 port {args.port}: {error.strerror or error}") from None
     print(f"pge view: serving {recording.path} at {server.url} (Ctrl-C stops)", flush=True)
-    if not args.no_browser:
+    # no screen (a server, CI, PGE_HEADLESS=1): webbrowser could start a text browser in this
+    # terminal, so only the printed URL is offered
+    screen = os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
+    screenless = sys.platform.startswith("linux") and not screen
+    from pge.classic.session import is_headless
+
+    if not args.no_browser and not screenless and not is_headless():
         import webbrowser
 
         # a headless machine has no browser: the printed URL is enough, so a failure is not an error
@@ -267,7 +273,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     _add_file(view)
     view.add_argument("--port", type=_port, default=0, help="port to serve on (default: a free one)")
-    view.add_argument("--no-browser", action="store_true", help="do not open a browser, only print the URL")
+    view.add_argument("--no-browser", action="store_true", help="do not open a browser, only print the URL (the default where there is no screen)")
     view.add_argument("--start", type=_time, default=None, metavar="T", help="first time in seconds (default: start)")
     view.add_argument("--end", type=_time, default=None, metavar="T", help="last time in seconds (default: end)")
     view.set_defaults(handler=_view)
