@@ -16,9 +16,8 @@ and the score; launched = scored + in play.
 
 import sys
 
+import pge  # first: it keeps pygame from printing its banner
 from pygame.locals import MOUSEBUTTONDOWN, QUIT
-
-import pge
 
 WALL = 0.01
 BALL = 0.018

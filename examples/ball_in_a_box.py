@@ -19,9 +19,8 @@ and the relative drift of the total energy.
 
 import sys
 
+import pge  # first: it keeps pygame from printing its banner
 from pygame.locals import K_ESCAPE, KEYDOWN, QUIT
-
-import pge
 
 WALL = 0.02
 G = -9.81

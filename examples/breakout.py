@@ -10,20 +10,23 @@ as the game goes, and ``at_time`` timers (a one-second clock).
 There is no gravity and every elasticity is 1, so the ball keeps its speed.
 The paddle is a very heavy moving box: the ball bounces off it almost as off
 a wall, and the paddle's own callback cancels the little vertical speed it
-picks up. Headless (``PGE_HEADLESS=1``) input handlers never fire, so the
-paddle stands still and the ball alone decides the game: the final ``RESULT``
-line gives the bricks left and knocked out, the lives left and the balls used.
+picks up. In a window the game goes on until every brick is knocked out or
+the last life is lost (the controls are written at the top of the window);
+Escape or closing the window quits. Headless (``PGE_HEADLESS=1``) input
+handlers never fire, so the paddle stands still and the ball alone decides a
+20-second game: the final ``RESULT`` line gives the bricks left and knocked
+out, the lives left and the balls used.
 """
 
 import sys
 
+import pge  # first: it keeps pygame from printing its banner
 from pygame.locals import K_ESCAPE, K_LEFT, K_RIGHT, KEYDOWN, KEYUP, QUIT
-
-import pge
+from pge.classic.runloop import headless  # True without a window (PGE_HEADLESS=1 or pge.batch())
 
 WALL = 0.01
 PADDLE_SPEED = 0.6
-DURATION = 20.0
+DURATION = 20.0  # simulated seconds of a headless game (a window plays until the game ends)
 
 pge.interactive()
 pge.display_set_mode([800, 800])
@@ -50,13 +53,19 @@ def show_score():
     state["score_text"] = pge.text(0.05, 0.97, words, white, 30, 1)
 
 
+def game_over(words, x):
+    pge.text(x, 0.5, words, white, 80, 2)
+    if not headless():
+        pge.text(0.32, 0.4, "Escape or close the window to quit", white, 24, 2)
+
+
 def brick_hit(brick, event):
     brick.rm()
     state["bricks"] -= 1
     state["knocked"] += 1
     show_score()
     if state["bricks"] == 0:
-        pge.text(0.35, 0.5, "Winner", white, 80, 2)
+        game_over("Winner", 0.35)
 
 
 for row in range(3):
@@ -89,17 +98,31 @@ def floor_hit(floor_object, event):
             if state["lives"] > 0:
                 new_ball()  # created in a callback: joins the simulation when this returns
             else:
-                pge.text(0.3, 0.5, "Game over", white, 80, 2)
+                game_over("Game over", 0.3)
 
 
 floor.on_collision(floor_hit)
 new_ball()
 show_score()
+if not headless():
+    pge.text(0.52, 0.97, "left/right arrows: paddle   Esc: quit", white, 22, 1)
 
 
 def tick(event, unused):
     state["seconds"] += 1
     pge.at_time(1.0, tick)
+
+
+def result():
+    print(
+        f"RESULT example=breakout bricks={state['bricks']} knocked={state['knocked']} lives={state['lives']} "
+        f"balls={state['balls']} seconds={state['seconds']} time={pge.get_time():.6f}"
+    )
+
+
+def quit_game(event=None):
+    result()
+    sys.exit(0)
 
 
 def key_down(event):
@@ -108,7 +131,7 @@ def key_down(event):
     elif event.key == K_RIGHT:
         paddle.put_xvel(PADDLE_SPEED)
     elif event.key == K_ESCAPE:
-        sys.exit(0)
+        quit_game()
 
 
 def key_up(event):
@@ -118,10 +141,8 @@ def key_up(event):
 
 pge.register_handler(key_down, [KEYDOWN])
 pge.register_handler(key_up, [KEYUP])
-pge.register_handler(lambda event: sys.exit(0), [QUIT])
+pge.register_handler(quit_game, [QUIT])
 pge.at_time(1.0, tick)
-pge.run(DURATION)
-print(
-    f"RESULT example=breakout bricks={state['bricks']} knocked={state['knocked']} lives={state['lives']} "
-    f"balls={state['balls']} seconds={state['seconds']} time={pge.get_time():.6f}"
-)
+# a window plays on until the player quits (the game's end stays on screen); headless runs DURATION
+pge.run(DURATION if headless() else -1)
+result()

@@ -20,9 +20,8 @@ and blue balls freed and collected.
 
 import sys
 
+import pge  # first: it keeps pygame from printing its banner
 from pygame.locals import QUIT
-
-import pge
 
 WALL = 0.01
 STICK = 0.01

@@ -17,9 +17,8 @@ changed by a hit, and whether every body is still inside the room.
 import math
 import sys
 
+import pge  # first: it keeps pygame from printing its banner
 from pygame.locals import QUIT
-
-import pge
 
 WALL = 0.01
 DURATION = 8.0

@@ -11,27 +11,32 @@ game itself: a timer every 0.05 s slows every ball by 1.5 % with
 else) and stops balls slower than 0.01.
 
 There is no gravity, so the default elasticity 0.98 is safe: balls roll to a
-stop on the cloth, they never come to rest *on* a surface. Headless (no
-mouse) the game plays itself: a break at the start, then every 3 seconds the
-cue ball is struck at the nearest red. The ``RESULT`` line gives reds potted
-and left (10 in all), shots, cue-ball fouls ball-ball collisions, and whether every ball left is on the cloth.
+stop on the cloth, they never come to rest *on* a surface. In a window you
+play: click where the cue ball should go (the controls are written under the
+score); the frame ends when every red is potted, and Escape or closing the
+window quits. Headless (no mouse), or with ``--demo``, the game plays itself
+for 20 seconds: a break at the start, then every 3 seconds the cue ball is
+struck at the nearest red. The ``RESULT`` line gives reds potted and left (10
+in all), shots, cue-ball fouls, ball-ball collisions, and whether every ball
+left is on the cloth.
 """
 
 import math
 import sys
 
-from pygame.locals import MOUSEBUTTONDOWN, QUIT
-
-import pge
+import pge  # first: it keeps pygame from printing its banner
+from pygame.locals import K_ESCAPE, KEYDOWN, MOUSEBUTTONDOWN, QUIT
+from pge.classic.runloop import headless  # True without a window (PGE_HEADLESS=1 or pge.batch())
 
 X0, Y0, X1, Y1 = 0.08, 0.08, 1.70, 0.89  # the cloth inside the cushions
 R = 0.026
 SPOT = (0.45, 0.485)
-DURATION = 20.0
+DURATION = 20.0  # simulated seconds of a demo (headless, or --demo); a player's game runs until quit
 SHOT = 0.9  # impulse of a shot (the cue ball's mass is 1)
 
 pge.interactive()
 pge.display_set_mode([1000, 560])
+DEMO = headless() or "--demo" in sys.argv[1:]  # only a demo shoots by itself
 pge.slow_down(1.0)
 
 cushion = pge.rgb(0.25, 0.15, 0.08)
@@ -68,6 +73,8 @@ def potted(pocket, event):
             ball.rm()
             reds.remove(ball)
             state["potted"] += 1
+            if not reds:
+                pge.text(0.55, 0.55, "All reds potted!", white, 60, 2)
     show()
 
 
@@ -136,19 +143,38 @@ def mouse(event):
     strike(x, y)
 
 
+def result():
+    on_table = reds + ([state["cue"]] if state["cue"] is not None else [])
+    inside = all(
+        X0 + R - 1e-9 <= b.get_xpos() <= X1 - R + 1e-9 and Y0 + R - 1e-9 <= b.get_ypos() <= Y1 - R + 1e-9
+        for b in on_table
+    )
+    print(
+        f"RESULT example=snooker potted={state['potted']} reds={len(reds)} shots={state['shots']} "
+        f"fouls={state['fouls']} kisses={state['kisses']} inside={inside} time={pge.get_time():.6f}"
+    )
+
+
+def quit_game(event=None):
+    result()
+    sys.exit(0)
+
+
+def key(event):
+    if event.key == K_ESCAPE:
+        quit_game()
+
+
 place_cue()
 show()
+if not DEMO:
+    pge.text(1.02, 0.99, "click: shoot the cue ball at the mouse   Esc: quit", white, 20, 1)
 pge.register_handler(mouse, [MOUSEBUTTONDOWN])
-pge.register_handler(lambda event: sys.exit(0), [QUIT])
-pge.at_time(0.0, lambda event, unused: strike(1.25, SPOT[1] + 0.004))  # the break
-pge.at_time(3.0, next_shot)
+pge.register_handler(key, [KEYDOWN])
+pge.register_handler(quit_game, [QUIT])
+if DEMO:
+    pge.at_time(0.0, lambda event, unused: strike(1.25, SPOT[1] + 0.004))  # the break
+    pge.at_time(3.0, next_shot)
 pge.at_time(0.05, cloth_friction)
-pge.run(DURATION)
-on_table = reds + ([state["cue"]] if state["cue"] is not None else [])
-inside = all(
-    X0 + R - 1e-9 <= b.get_xpos() <= X1 - R + 1e-9 and Y0 + R - 1e-9 <= b.get_ypos() <= Y1 - R + 1e-9 for b in on_table
-)
-print(
-    f"RESULT example=snooker potted={state['potted']} reds={len(reds)} shots={state['shots']} "
-    f"fouls={state['fouls']} kisses={state['kisses']} inside={inside} time={pge.get_time():.6f}"
-)
+pge.run(DURATION if DEMO else -1)
+result()

@@ -23,9 +23,8 @@ it prints one ``RESULT`` line.
 
 import sys
 
+import pge  # first: it keeps pygame from printing its banner
 from pygame.locals import K_ESCAPE, KEYDOWN, QUIT
-
-import pge
 
 G = -9.81
 N = 4

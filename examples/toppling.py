@@ -22,9 +22,8 @@ whether any two bodies overlap.
 import math
 import sys
 
+import pge  # first: it keeps pygame from printing its banner
 from pygame.locals import K_ESCAPE, KEYDOWN, QUIT
-
-import pge
 
 DURATION = 6.0
 QUIET_FROM = 4.0

@@ -86,7 +86,7 @@ def test_bad_options_are_one_line_usage_errors(small, tmp_path, capsys):
     _one_line_error(capsys, main(["export", str(small), gif, "--size", "big"]), 2, "size must be")
     _one_line_error(capsys, main(["export", str(small), gif, "--fps", "-3"]), 2, "--fps")
     _one_line_error(capsys, main(["export", str(small), gif, "--start", "nan"]), 2, "--start")
-    _one_line_error(capsys, main(["export", str(small), str(tmp_path / "x.avi")]), 1, ".gif or .mp4")
+    _one_line_error(capsys, main(["export", str(small), str(tmp_path / "x.avi")]), 1, ".gif, .mp4 or .html")
     _one_line_error(capsys, main(["export", str(small), gif, "--start", "9"]), 1, "misses the recording")
     _one_line_error(capsys, main(["frobnicate"]), 2, "invalid choice")
     _one_line_error(capsys, main(["info"]), 2, "FILE")

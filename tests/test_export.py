@@ -65,7 +65,7 @@ def test_bad_export_requests_raise_value_errors_naming_the_problem(red_disc, tmp
     """Odd MP4 sizes, unknown suffixes, empty or missed time ranges are refused with a message."""
     with pytest.raises(ValueError, match="even width"):
         export(red_disc, tmp_path / "x.mp4", size=(99, 64), progress=False)
-    with pytest.raises(ValueError, match=r"\.gif or \.mp4"):
+    with pytest.raises(ValueError, match=r"\.gif, \.mp4 or \.html"):
         export(red_disc, tmp_path / "x.avi", progress=False)
     with pytest.raises(ValueError, match="empty time range"):
         export(red_disc, tmp_path / "x.gif", start=0.8, end=0.2, progress=False)

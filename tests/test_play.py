@@ -11,8 +11,8 @@ from recording_helpers import falling_scene, raw_batch_file, record_small
 from pge.cli import main
 from pge.playback.control import MAX_SPEED, MIN_SPEED, PlayerState, press, start, tick
 from pge.playback.history import EventHistory, event_lines
-from pge.playback.player import play
-from pge.playback.screen import fit, status_line
+from pge.playback.player import default_size, play
+from pge.playback.screen import PANEL, STRIP, fit, status_line
 from pge.recording import Recorder, open_recording
 from pge.render.protocol import NullDisplay
 
@@ -137,6 +137,16 @@ def test_fit_centres_the_bounds_at_one_scale():
     assert view.k == 0.5 and view.ox == 0.0 and view.oy == 0.25 and view.pixel == 1 / 400
     wide = fit((0.0, 0.0, 1.0, 1.0), (600, 300))
     assert wide.width == 2.0 and wide.k == 1.0 and wide.ox == 0.5
+
+
+def test_fit_keeps_the_event_panel_and_status_strip_off_the_scene():
+    """With a panel and a strip the scene fits in what is left: left of the panel, above the strip."""
+    view = fit((0.0, 0.0, 1.0, 1.0), default_size((0.0, 0.0, 1.0, 1.0)), PANEL, STRIP)
+    scene_right = view.ox + view.k
+    assert abs(view.panel_x - scene_right) < 1e-12 and abs(view.oy - STRIP * view.pixel) < 1e-12
+    assert abs(view.k / view.pixel - 800) < 1e-9  # the scene keeps its 800 pixels
+    small = fit((0.0, 0.0, 1.0, 1.0), (300, 300), PANEL, STRIP)
+    assert small.panel_x == small.width  # too narrow for a panel: the scene keeps the room
 
 
 def test_event_list_shows_the_latest_collisions_with_time_and_ids(bouncing):
@@ -299,7 +309,7 @@ def test_drawn_frame_has_each_disc_colour_at_its_position(falling, monkeypatch):
     try:
         play(recording, headless=True, display=display)
         frame = recording.frame(len(recording) - 1)
-        view = fit(recording.bounds, (300, 300))
+        view = fit(recording.bounds, (300, 300), PANEL, STRIP)
         assert len(frame.circles.ids) == 5
         for (x, y), colour in zip(frame.circles.centres.tolist(), frame.circles.colours.tolist()):
             px, py = display.to_pixels(view.ox + (x - view.x0) * view.k, view.oy + (y - view.y0) * view.k)

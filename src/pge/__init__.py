@@ -15,7 +15,12 @@ combination of parameters and seeds on Dask and returns a pandas DataFrame
 (the optional ``sweep`` extra; see ``pge.sweeps``).
 """
 
-from pge import _jit_cache  # noqa: F401  (must come first: it configures the kernel cache)
+import os as _os
+
+# before anything imports pygame (pge's window, or a game's pygame.locals): no banner on stdout
+_os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+
+from pge import _jit_cache  # noqa: E402,F401  (must come first: it configures the kernel cache)
 from pge import classic as _classic
 from pge.bodies import Body
 from pge.classic import (  # the classic PGE names: pge.classic.PGE_NAMES

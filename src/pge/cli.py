@@ -1,4 +1,4 @@
-"""The ``pge`` command line: showcase, info, play, export, run, sweep.
+"""The ``pge`` command line: showcase, info, play, view, export, run, sweep.
 
 Every failure the user can cause (missing file, a file that is not a
 recording, a damaged recording, bad options) ends with one line
@@ -19,6 +19,17 @@ examples:
   pge export run.pgerec frames/                 every frame as frames/frame_00000.png, ...
   pge export run.pgerec run.gif --fps 25        an animated GIF at 25 frames per second
   pge export run.pgerec run.mp4 --size 1280x720 --start 2 --end 10
+  pge export run.pgerec run.html                the browser viewer as one file anyone can open
+"""
+
+_EPILOG_VIEW = """\
+the page:
+  play/pause, step, a seek slider, the speed, the time, and the collisions and timers beside the scene;
+  keys: space plays/pauses, left/right step, up/down jump 10 frames, home/end, +/- change the speed
+
+examples:
+  pge view run.pgerec                           serve on a free port and open the browser
+  pge view output.raw --port 8000 --no-browser  serve on port 8000 only (open the printed URL yourself)
 """
 
 
@@ -136,6 +147,46 @@ def _export(args) -> int:
     if not args.quiet:
         print(f"pge export: {count} frames written to {args.out}")
     return 0
+
+
+def _view(args) -> int:
+    from pge.viewer.server import ViewerServer
+
+    recording = _open(args)
+    try:
+        server = ViewerServer(recording, port=args.port, start=args.start, end=args.end)
+    except OSError as error:
+        raise OSError(f"cannot serve on 127.0.0.1 port {args.port}: {error.strerror or error}") from None
+    print(f"pge view: serving {recording.path} at {server.url} (Ctrl-C stops)", flush=True)
+    # no screen (a server, CI, PGE_HEADLESS=1): webbrowser could start a text browser in this
+    # terminal, so only the printed URL is offered
+    screen = os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
+    screenless = sys.platform.startswith("linux") and not screen
+    from pge.classic.session import is_headless
+
+    if not args.no_browser and not screenless and not is_headless():
+        import webbrowser
+
+        # a headless machine has no browser: the printed URL is enough, so a failure is not an error
+        try:
+            webbrowser.open(server.url)
+        except Exception:
+            pass
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        print("pge view: stopped", file=sys.stderr)
+    return 0
+
+
+def _port(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"must be a port number from 0 to 65535, got {text!r}")
+    return value
 
 
 _PLAY_KEYS = """\
@@ -313,16 +364,32 @@ def build_parser() -> argparse.ArgumentParser:
     play.add_argument("--headless", action="store_true", help="no window: walk every frame and print a summary")
     play.set_defaults(handler=_play)
 
+    view = commands.add_parser(
+        "view",
+        help="watch a recording in a web browser (served on 127.0.0.1)",
+        description="Serve a page that plays the recording on 127.0.0.1 (this machine only), print its URL "
+        "and open it in the default browser. The page needs no internet. Ctrl-C stops the server.",
+        epilog=_EPILOG_VIEW,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    _add_file(view)
+    view.add_argument("--port", type=_port, default=0, help="port to serve on (default: a free one)")
+    view.add_argument("--no-browser", action="store_true", help="do not open a browser, only print the URL (the default where there is no screen)")
+    view.add_argument("--start", type=_time, default=None, metavar="T", help="first time in seconds (default: start)")
+    view.add_argument("--end", type=_time, default=None, metavar="T", help="last time in seconds (default: end)")
+    view.set_defaults(handler=_view)
+
     export = commands.add_parser(
         "export",
-        help="export a recording as PNG frames, an animated GIF or an MP4 video",
-        description="Export a recording. OUT ending in .gif writes an animated GIF, .mp4 an H.264 video; "
+        help="export a recording as PNG frames, an animated GIF, an MP4 video or an HTML viewer",
+        description="Export a recording. OUT ending in .gif writes an animated GIF, .mp4 an H.264 video, "
+        ".html the browser viewer as one self-contained file (--size and --fps do not apply); "
         "any other name is a directory that receives one PNG per frame.",
         epilog=_EPILOG_EXPORT,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     _add_file(export)
-    export.add_argument("out", metavar="OUT", help="DIRECTORY for PNG frames, or FILE.gif, or FILE.mp4")
+    export.add_argument("out", metavar="OUT", help="DIRECTORY for PNG frames, or FILE.gif, FILE.mp4 or FILE.html")
     export.add_argument(
         "--size", type=_size, default=(512, 512), metavar="WxH", help="picture size in pixels (default: 512x512)"
     )

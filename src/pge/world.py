@@ -28,8 +28,9 @@ from pge.geometry import check_number, check_vector
 from pge.response import RESTITUTION_RULES, restitution_rule
 from pge.shapes import Circle, Polygon
 from pge.toi import CIRCLE, POLYGON, outline_rows
+from pge.watch import LeftWorldWarning, check_escapes
 
-__all__ = ["World"]
+__all__ = ["World", "LeftWorldWarning"]
 
 _INF = math.inf
 
@@ -780,8 +781,9 @@ class World:
             if code == L.DONE or code == L.EMPTY:
                 if until != _INF:
                     state.P[L.TIME] = until
-                    if emit:
-                        yield Stop(until)
+                check_escapes(self, 3 if emit else 4)  # at the end of a run: cheap, once per run
+                if emit and until != _INF:
+                    yield Stop(until)
                 return
             if code == L.NEED_SPACE:
                 state.ensure_events(0)
@@ -1120,6 +1122,47 @@ class World:
                 px += mass * vx
                 py += mass * vy
         return px, py
+
+    # ------------------------------------------------------------ watching
+
+    def picture(self, path=None, size=None, bounds=None):
+        """A picture of the world now, as a ``PIL.Image``; written to ``path`` (PNG) if given.
+
+        ``size`` is the longer side in pixels (default 800, the other side
+        following the aspect of ``bounds``) or ``(width, height)``; ``bounds``
+        ``(x0, y0, x1, y1)`` is the region shown (default: the world's bounds).
+        A body's colour is ``body.data["colour"]`` (an RGB tuple) if given.
+        """
+        from pge.watch import picture
+
+        return picture(self, path, size, bounds)
+
+    def _repr_png_(self) -> bytes:
+        """Jupyter shows a World as its picture now (400 pixels on the longer side)."""
+        from pge.watch import png_bytes
+
+        return png_bytes(self)
+
+    def record(self, path, frame_rate=None, collisions: bool = True):
+        """Start recording to ``path`` (a ``.pgerec`` file): returns a ``pge.recording.Recorder``.
+
+        Use it as a context manager, ``with world.record("run.pgerec"):
+        world.run_until(5)``, or call its ``close()``; watch the file with
+        ``pge view``, ``pge play`` or ``pge export``.
+        """
+        from pge.recording import Recorder
+
+        return Recorder(self, path, frame_rate=frame_rate, collisions=collisions)
+
+    def animate(self, until, frame_rate=None):
+        """Run to time ``until`` while recording, and return a ``pge.viewer.Animation``:
+        in a notebook it plays inline; ``.save("run.html")`` writes it as a page.
+
+        ``frame_rate`` defaults to the world's, else 30 frames per second.
+        """
+        from pge.watch import animate
+
+        return animate(self, until, frame_rate)
 
 
 def _restore_xy(F, i, old) -> None:

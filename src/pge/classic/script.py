@@ -106,8 +106,9 @@ def add_run_command(commands) -> argparse.ArgumentParser:
         type=_until,
         metavar="T",
         default=None,
-        help="stop the simulation at simulated time T seconds even if the script asks for longer "
-        "(the run() reaching T returns; a later run() ends the script)",
+        help="cap the run at simulated time T seconds: a run() that would go past T stops there and returns "
+        "(so the script can print its results), and a later run() ends the script; a game that ends "
+        "sooner is not made to last until T",
     )
     command.add_argument("script", metavar="SCRIPT", help="the Python script to run")
     command.add_argument("args", nargs=argparse.REMAINDER, metavar="ARGS", help="arguments for the script")

@@ -19,7 +19,7 @@ from typing import NamedTuple
 
 from pge.playback.control import press, start, tick
 from pge.playback.history import EventHistory
-from pge.playback.screen import EVENT_LINES, draw_screen, fit
+from pge.playback.screen import PANEL, STRIP, TEXT_SIZE, draw_screen, fit
 from pge.render.protocol import NullDisplay
 
 __all__ = ["play", "PlaySummary", "NoWindow", "default_size", "POLL"]
@@ -55,11 +55,15 @@ class PlaySummary(NamedTuple):
 
 
 def default_size(bounds) -> tuple[int, int]:
-    """A window of ``DEFAULT_SIDE`` pixels on its longer side with the aspect of ``bounds``."""
+    """A window whose scene is ``DEFAULT_SIDE`` pixels on its longer side with the aspect of
+    ``bounds``, widened by the event panel and heightened by the status strip."""
     x0, y0, x1, y1 = bounds
     w, h = x1 - x0, y1 - y0
     side = max(w, h)
-    return (max(200, round(DEFAULT_SIDE * w / side)), max(200, round(DEFAULT_SIDE * h / side)))
+    return (
+        max(200, round(DEFAULT_SIDE * w / side)) + PANEL,
+        max(200, round(DEFAULT_SIDE * h / side)) + STRIP,
+    )
 
 
 def _open_window(size, fullscreen: bool, caption: str):
@@ -105,7 +109,7 @@ def play(
         )
     try:
         pixels = (getattr(display, "width", size[0]), getattr(display, "height", size[1]))
-        view = fit(recording.bounds, pixels)
+        view = fit(recording.bounds, pixels, PANEL, STRIP)
         history = EventHistory(recording)
         if headless:
             return _walk(recording, display, view, state, history)
@@ -118,7 +122,8 @@ def play(
 def _show(recording, display, view, state, history):
     frame = recording.frame(state.index)
     history.note(frame)
-    draw_screen(display, recording, frame, view, state, history.recent(state.index, EVENT_LINES))
+    lines = max(1, int((view.height - STRIP * view.pixel) / ((TEXT_SIZE + 2) * view.pixel)) - 1)  # fill the panel
+    draw_screen(display, recording, frame, view, state, history.recent(state.index, lines))
     return frame
 
 

@@ -208,3 +208,9 @@ class Recording:
 
     def __repr__(self) -> str:
         return f"<Recording {self.path} ({self.format}): {len(self)} frames, {self.duration:g} s>"
+
+    def _repr_html_(self) -> str:
+        """Jupyter plays a recording inline in the browser viewer (``pge.viewer.Animation``)."""
+        from pge.viewer import Animation
+
+        return Animation.from_recording(self)._repr_html_()

@@ -34,9 +34,14 @@ class Recorder:
     world has none (then 60). Frame 0 is the state when the recorder is made;
     then one frame per FRAME event. ``collisions=False`` skips collision
     events (the engine then need not stop for each one). Call ``close()`` when
-    done (or use ``with``): it writes the events after the last frame and the
-    end record. After ``close`` the recorder ignores the world's callbacks
-    (the World API cannot unregister them).
+    done, or use it as a context manager::
+
+        with Recorder(world, "run.pgerec"):
+            world.run_until(5.0)
+
+    ``close`` writes the events after the last frame and the end record, and
+    takes the recorder's callbacks off the world (``World.record(path)``
+    makes the same recorder).
     """
 
     def __init__(self, world, path, frame_rate=None, collisions: bool = True) -> None:
@@ -162,6 +167,9 @@ class Recorder:
         if self.closed:
             return
         self.closed = True
+        # unhook first: the world may run on without a recording, and should not stop for our sake
+        self.world.off_frame(self._on_frame)
+        self.world.off_collision(self._on_collision)
         self._writer.close(self.world.time, *self._take_events())
 
     def __enter__(self):

@@ -1,7 +1,9 @@
-"""Export a recording as PNG frames, an animated GIF (Pillow) or an MP4 video (imageio + ffmpeg).
+"""Export a recording as PNG frames, an animated GIF (Pillow), an MP4 video (imageio + ffmpeg)
+or a self-contained HTML page that plays it in a browser (``pge.viewer``).
 
 ``export(recording, out)`` picks the kind from ``out``: a name ending in
-``.gif`` or ``.mp4``, otherwise a directory that receives ``frame_00000.png``,
+``.gif``, ``.mp4`` or ``.html`` (the browser viewer with every frame in
+``[start, end]`` embedded; ``size`` and ``fps`` do not apply), otherwise a directory that receives ``frame_00000.png``,
 ``frame_00001.png``, ... Frames are sampled at ``fps`` frames per second of
 simulation time over ``[start, end]``: output frame k shows the recording's
 last frame at or before ``start + k / fps``. Without ``fps`` every recorded
@@ -25,12 +27,16 @@ _PROGRESS_FROM = 50  # frames: shorter exports print no progress bar
 
 
 def export_kind(out) -> str:
-    """``"gif"``, ``"mp4"`` or ``"png"`` (a directory), from the output name."""
+    """``"gif"``, ``"mp4"``, ``"html"`` or ``"png"`` (a directory), from the output name."""
     suffix = Path(out).suffix.lower()
-    if suffix in (".gif", ".mp4"):
+    if suffix in (".gif", ".mp4", ".html"):
         return suffix[1:]
+    if suffix == ".htm":
+        return "html"
     if suffix:
-        raise ValueError(f"cannot export to {str(out)!r}: use a .gif or .mp4 name, or a directory for PNG frames")
+        raise ValueError(
+            f"cannot export to {str(out)!r}: use a .gif, .mp4 or .html name, or a directory for PNG frames"
+        )
     return "png"
 
 
@@ -80,6 +86,10 @@ def export(recording, out, size=(512, 512), fps=None, start=None, end=None, prog
     if width < 1 or height < 1:
         raise ValueError(f"size must be positive, got {width}x{height}")
     kind = export_kind(out)
+    if kind == "html":
+        from pge.viewer import write_html
+
+        return write_html(recording, out, start, end)
     if kind == "mp4" and (width % 2 or height % 2):
         raise ValueError(f"MP4 needs an even width and height, got {width}x{height}")
     indices, rate = plan_frames(recording, fps, start, end, kind)
