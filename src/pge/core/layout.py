@@ -77,7 +77,14 @@ PENDING_N = 9  # bodies waiting in `pending` to be predicted
 PENDING_DONE = 10  # how many of them are done
 PENDING_MARK = 11  # pair-once mark of the current batch
 PILES_N = 12  # resting bodies in `piles` whose pile must be solved again before the event ends
-NQ = 13
+BROADPHASE = 13  # broad-phase switches (bits below; 0: every stage on, the sound default)
+NQ = 14
+
+# ---- Q[BROADPHASE] bits: stages switched off to measure what they save (World.broadphase)
+NO_SHORT_CIRCUIT = 1  # skip cannot_touch_before: every box-overlapping pair is solved exactly
+NO_BOXES = 2  # skip the swept-box overlap check (the window is still min(h_i, h_j))
+NO_GRID = 4  # candidates are every body in the grid or fixed, not the neighbouring cells'
+LECTURE_TEST = 8  # the lecture's unsound short-circuit test instead of cannot_touch_before
 
 # ---- stats: int64 counters ---------------------------------------------------
 STAT_NAMES = (
