@@ -190,7 +190,7 @@ def timed_run(scene: str, combination: str, budget: float) -> dict:
 
 def lecture_audit(scene: str) -> dict:
     """Sound and lecture runs with collision logs: where the lecture's run departs, and how."""
-    from pge.broadphase.audit import CollisionLog, compare_traces
+    from pge.traces import CollisionLog, compare_traces
 
     build, _, duration = SCENES[scene]
     logs = {}
@@ -275,7 +275,7 @@ def warm_up() -> float:
     for combination in COMBINATIONS.values():
         world.broadphase = combination
         world.run(0.2)
-    from pge.broadphase.audit import CollisionLog
+    from pge.traces import CollisionLog
 
     CollisionLog(world, depths=True)
     world.run(0.2)

@@ -18,7 +18,7 @@ import pytest
 from strategies import build_scene, closed_box, random_scene
 
 from pge import World
-from pge.broadphase.audit import CollisionLog, compare_traces
+from pge.traces import CollisionLog, compare_traces
 from pge.core import layout as L
 
 #: counters a broad-phase switch is expected to change; every other one must match.
