@@ -53,9 +53,9 @@ class Divergence(NamedTuple):
     ``fate``: ``"identical"``, ``"missed"`` (the reference's collision there never
     happens in the other run), ``"late"`` (it happens later, by ``delay`` seconds),
     ``"extra"`` (the other run reports a collision the reference does not have at
-    that time), ``"different"`` (same pair and time, other numbers), or
-    ``"shorter"`` (one trace is a prefix of the other); ``reference``: the
-    reference's entry there (None if it has none).
+    that time, or goes on after the reference's last), ``"different"`` (same pair
+    and time, other numbers); ``reference``: the reference's entry there (None if
+    it has none).
     """
 
     index: int | None
@@ -89,5 +89,8 @@ def compare_traces(reference, other) -> Divergence:
         return Divergence(index, "missed", mine, math.nan)
     if len(reference) == len(other):
         return Divergence(None, "identical", None, 0.0)
-    shorter = min(len(reference), len(other))
-    return Divergence(shorter, "shorter", reference[shorter] if shorter < len(reference) else None, math.nan)
+    index = len(other)
+    if index < len(reference):
+        # The other run ended with no more collisions: the reference's next one never happened.
+        return Divergence(index, "missed", reference[index], math.nan)
+    return Divergence(len(reference), "extra", None, math.nan)
