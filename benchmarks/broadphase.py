@@ -391,7 +391,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", nargs="+", default=list(SCENES), choices=list(SCENES))
     parser.add_argument("--combinations", nargs="+", default=list(COMBINATIONS), choices=list(COMBINATIONS))
-    parser.add_argument("--budget", type=float, default=30.0, help="wall seconds allowed per timed run (default 30)")
+    parser.add_argument("--budget", type=float, default=20.0, help="wall seconds allowed per timed run (default 20)")
     parser.add_argument("--no-audit", action="store_true", help="skip the lecture audit runs")
     parser.add_argument("--out", type=Path, default=HERE / "results" / f"broadphase-{socket.gethostname()}.csv")
     args = parser.parse_args(argv)
@@ -443,7 +443,7 @@ def main(argv=None) -> int:
             by["sound"]["grid_avoided"] = by["no-grid"]["candidates"] - by["sound"]["candidates"]
         if "lecture" in args.combinations and not args.no_audit:
             print(f"{scene:>10} lecture audit    ", end="", flush=True)
-            audits[scene] = in_child(lecture_audit, (scene,), 4 * args.budget)
+            audits[scene] = in_child(lecture_audit, (scene,), 2 * args.budget)
             print(" done", flush=True)
         if sound is not None:
             for row in rows:
