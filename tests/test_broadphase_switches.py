@@ -15,6 +15,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from strategies import build_scene, closed_box, random_scene
 
 from pge import World
@@ -141,6 +143,34 @@ def _skipped_pairs(world) -> int:
     return s["candidates"] - s["predictions"] - s["box_rejects"] - s["bound_rejects"]
 
 
+@settings(deadline=None, max_examples=6, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    seed=st.integers(0, 10_000),
+    circles=st.integers(0, 12),
+    polygons=st.integers(1, 8),
+    spin=st.sampled_from([0.0, 3.0, 15.0]),
+    gravity=st.sampled_from([(0.0, 0.0), (0.0, -9.81), (2.0, -5.0)]),
+    elasticity=st.sampled_from([1.0, 0.8]),
+    switches=st.sampled_from(list(SWITCHES.values())),
+)
+def test_random_scenes_give_the_same_trace_with_a_stage_off(seed, circles, polygons, spin, gravity, elasticity, switches):
+    def make(broadphase):
+        world = World(gravity=gravity, elasticity=elasticity, broadphase=broadphase)
+        closed_box(world, fixed=True, elasticity=elasticity)
+        specs = random_scene(seed, n_circles=circles, n_polygons=polygons, radius=(0.03, 0.07), elasticity=elasticity)
+        for k, body in enumerate(build_scene(world, specs)):
+            if specs[k]["kind"] == "polygon" and spin:
+                world.set_angular_velocity(body, spin if k % 2 else -spin)
+        log = CollisionLog(world)
+        world.run_until(1.5)
+        return world, log.entries
+
+    reference_world, reference = make(None)
+    world, trace = make(switches)
+    assert compare_traces(reference, trace).fate == "identical"
+    assert final_state(world) == final_state(reference_world)
+
+
 def test_switches_can_change_during_a_run_without_changing_events():
     reference_world, reference = run("spinning-gravity", 3, until=3.0)
     world = build("spinning-gravity", 3)
@@ -245,3 +275,22 @@ def test_broadphase_defaults_and_round_trip():
     assert world.broadphase == {"short_circuit": "lecture", "boxes": False, "grid": True}
     world.broadphase = None
     assert world.broadphase == {"short_circuit": True, "boxes": True, "grid": True}
+
+
+# ------------------------------------------------------------------ compare_traces
+
+
+def test_compare_traces_names_what_happened_first():
+    a = (0.1, 0, 1, 0.0, 0.0, 1.0, 0.0, 2.0)
+    b = (0.2, 1, 2, 0.5, 0.0, 0.0, 1.0, 1.0)
+    c = (0.3, 0, 2, 0.2, 0.2, 1.0, 0.0, 0.5)
+    assert compare_traces([a, b], [a, b]).fate == "identical"
+    late = compare_traces([a, b], [a, c, (0.25, 2, 1, 0.5, 0.0, 0.0, 1.0, 1.0)])
+    assert (late.index, late.fate, late.reference) == (1, "late", b)
+    assert late.delay == pytest.approx(0.05)
+    assert compare_traces([a, b, c], [a, c]).fate == "missed"  # b's pair never collides again
+    assert compare_traces([a, b], [a]).fate == "missed"  # the other run has no collision left
+    assert compare_traces([a], [a, b]).fate == "extra"
+    assert compare_traces([b], [a, b]).fate == "extra"  # a collision before the reference's first
+    different = compare_traces([a], [(0.1, 1, 0, 0.0, 0.0, 1.0, 0.0, 2.5)])
+    assert (different.fate, different.delay) == ("different", 0.0)
