@@ -335,6 +335,7 @@ def chart(rows: list[dict], path: Path) -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     scenes = list(dict.fromkeys(row["scene"] for row in rows))
     names = list(COMBINATIONS)
@@ -358,17 +359,36 @@ def chart(rows: list[dict], path: Path) -> None:
         for x in labels:
             axes[0].text(x, 1.0, "skipped", rotation=90, ha="center", va="bottom", fontsize=7)
     axes[0].set_yscale("log")
+    axes[0].yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    axes[0].yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
     axes[0].axhline(1.0, color="black", linewidth=0.6)
     axes[0].set_ylabel("CPU time / sound run's")
     axes[0].set_title("pge broad phase: each stage switched off (benchmarks/broadphase.py)")
     axes[0].legend(ncol=3, fontsize=8)
     axes[1].set_yscale("log")
     axes[1].set_ylabel("exact predictions")
+    axes[1].set_xlim(-0.5, len(scenes) - 0.5)  # room for the "skipped" marks beside the last bars
     axes[1].set_xticks(range(len(scenes)))
     axes[1].set_xticklabels(scenes)
     figure.tight_layout()
     figure.savefig(path, dpi=110)
     plt.close(figure)
+
+
+def _numbers(row: dict) -> dict:
+    """A CSV row with its empty cells dropped and its numeric cells as numbers."""
+    out = {}
+    for key, value in row.items():
+        if value == "":
+            continue
+        try:
+            out[key] = int(value)
+        except ValueError:
+            try:
+                out[key] = float(value)
+            except ValueError:
+                out[key] = value
+    return out
 
 
 def git_commit(where: Path) -> str:
@@ -394,7 +414,14 @@ def main(argv=None) -> int:
     parser.add_argument("--budget", type=float, default=20.0, help="wall seconds allowed per timed run (default 20)")
     parser.add_argument("--no-audit", action="store_true", help="skip the lecture audit runs")
     parser.add_argument("--out", type=Path, default=HERE / "results" / f"broadphase-{socket.gethostname()}.csv")
+    parser.add_argument("--replot", type=Path, default=None, help="only redraw the chart from this CSV")
     args = parser.parse_args(argv)
+    if args.replot is not None:
+        with open(args.replot, newline="", encoding="utf-8") as handle:
+            rows = [_numbers(row) for row in csv.DictReader(handle)]
+        chart(rows, args.replot.with_suffix(".png"))
+        print(f"chart: {args.replot.with_suffix('.png')}")
+        return 0
     if not args.budget > 0:
         parser.error("--budget must be positive")
     if "sound" not in args.combinations:
