@@ -15,6 +15,9 @@ Combinations:
 * ``nothing``: all three off (every pair solved exactly: the naive engine);
 * ``lecture``: the lecture's (unsound) short-circuit test instead of the sound one.
 
+Each combination runs ``--repeat`` times (default 3; once if it takes more than a
+quarter of the budget) and keeps the least CPU and wall time; the counts are the same in every repeat (checked: ``deterministic``).
+
 The sound switches must not change any event: every run is checked against
 the ``sound`` run (events, collisions, hits, and the final positions and
 velocities bit for bit; column ``same``). The lecture run is expected to
@@ -314,7 +317,7 @@ def table(rows: list[dict]) -> str:
     for row in rows:
         if "skipped" in row or "error" in row:
             first = [cell(row, key, spec) for _, key, spec in COLUMNS[:4]]
-            note = f"skipped: {row['skipped']}" if "skipped" in row else f"error: {row['error']}"
+            note = f"skipped: {row['skipped']}" if "skipped" in row else f"error: {row['error'][:72]}..."
             body.append(first + [note] + [""] * (len(COLUMNS) - 5))
         else:
             body.append([cell(row, key, spec) for _, key, spec in COLUMNS])
@@ -411,7 +414,8 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", nargs="+", default=list(SCENES), choices=list(SCENES))
     parser.add_argument("--combinations", nargs="+", default=list(COMBINATIONS), choices=list(COMBINATIONS))
-    parser.add_argument("--budget", type=float, default=20.0, help="wall seconds allowed per timed run (default 20)")
+    parser.add_argument("--budget", type=float, default=30.0, help="wall seconds allowed per timed run (default 30)")
+    parser.add_argument("--repeat", type=int, default=3, help="runs per combination; the best is kept (default 3)")
     parser.add_argument("--no-audit", action="store_true", help="skip the lecture audit runs")
     parser.add_argument("--out", type=Path, default=HERE / "results" / f"broadphase-{socket.gethostname()}.csv")
     parser.add_argument("--replot", type=Path, default=None, help="only redraw the chart from this CSV")
@@ -424,6 +428,8 @@ def main(argv=None) -> int:
         return 0
     if not args.budget > 0:
         parser.error("--budget must be positive")
+    if args.repeat < 1:
+        parser.error("--repeat must be at least 1")
     if "sound" not in args.combinations:
         args.combinations.insert(0, "sound")  # every other run is compared with it
 
@@ -439,6 +445,7 @@ def main(argv=None) -> int:
         "pge_commit": git_commit(Path(pge.__file__).resolve().parent),
         "timestamp_utc": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
         "budget_s": args.budget,
+        "repeat": args.repeat,
     }
     warm = warm_up()
     print(f"warm-up (kernels loaded or compiled) {warm:.1f} s; budget {args.budget:g} s per run; "
@@ -449,6 +456,20 @@ def main(argv=None) -> int:
         for combination in args.combinations:
             print(f"{scene:>10} {combination:<17}", end="", flush=True)
             result = in_child(timed_run, (scene, combination), args.budget)
+            if "wall_s" in result:
+                result["deterministic"] = True
+            # Best of --repeat: the machine is shared, and the least disturbed run is the
+            # best estimate of the cost; every repeat must give the same events.
+            for _ in range(args.repeat - 1):
+                if "wall_s" not in result or result["wall_s"] > 0.25 * args.budget:
+                    break  # a long run is less disturbed, relatively, and repeating it costs most
+                again = in_child(timed_run, (scene, combination), args.budget)
+                if "wall_s" not in again:
+                    break
+                if again["fingerprint"] != result["fingerprint"]:
+                    result["deterministic"] = False
+                result["cpu_s"] = min(result["cpu_s"], again["cpu_s"])
+                result["wall_s"] = min(result["wall_s"], again["wall_s"])
             row = dict(common, scene=scene, combination=combination, loadavg_1min=os.getloadavg()[0], **result)
             if combination == "sound":
                 sound = row if "wall_s" in row else None
