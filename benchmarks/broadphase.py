@@ -12,6 +12,8 @@ Combinations:
 
 * ``sound``: everything on (the engine's default);
 * ``no-short-circuit``, ``no-boxes``, ``no-grid``: one stage off;
+* ``short-circuit-only``: all pairs, no boxes, only the short-circuit test (the
+  lecture's setting: PGE has no grid, and the tutorial adds the test to it);
 * ``nothing``: all three off (every pair solved exactly: the naive engine);
 * ``lecture``: the lecture's (unsound) short-circuit test instead of the sound one.
 
@@ -79,6 +81,7 @@ COMBINATIONS = {
     "no-short-circuit": {"short_circuit": False},
     "no-boxes": {"boxes": False},
     "no-grid": {"grid": False},
+    "short-circuit-only": {"boxes": False, "grid": False},
     "nothing": {"short_circuit": False, "boxes": False, "grid": False},
     "lecture": {"short_circuit": "lecture"},
 }
