@@ -47,7 +47,7 @@ that overruns; both are reported as "skipped: >budget".
 
 Usage (from the repository root, with ``pip install -e '.[bench]'``):
 
-    .venv/bin/python benchmarks/broadphase.py                       # every scene, ~8 minutes
+    .venv/bin/python benchmarks/broadphase.py                       # every scene, about 6 minutes
     .venv/bin/python benchmarks/broadphase.py --scenes gas-100 gas-1000 --budget 20
 
 Writes ``benchmarks/results/broadphase-<hostname>.csv`` and a bar chart
