@@ -77,8 +77,10 @@ PENDING_N = 9  # bodies waiting in `pending` to be predicted
 PENDING_DONE = 10  # how many of them are done
 PENDING_MARK = 11  # pair-once mark of the current batch
 PILES_N = 12  # resting bodies in `piles` whose pile must be solved again before the event ends
-BROADPHASE = 13  # broad-phase switches (bits below; 0: every stage on, the sound default)
-NQ = 14
+# 13 to 21: left free for main's storm-watch entries (STORM_RUN ... STORM_KINDS + 4), so that
+# merging the two keeps both: BROADPHASE stays 22 and NQ becomes 23.
+BROADPHASE = 22  # broad-phase switches (bits below; 0: every stage on, the sound default)
+NQ = 23
 
 # ---- Q[BROADPHASE] bits: stages switched off to measure what they save (World.broadphase)
 NO_SHORT_CIRCUIT = 1  # skip cannot_touch_before: every box-overlapping pair is solved exactly
