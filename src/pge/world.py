@@ -71,6 +71,12 @@ class World:
     * ``rest_height``: a bounce that would rise less than this times the
       body's bounding radius ends in resting contact (default 1e-4): the body
       then rests or slides on the surface instead of bouncing for ever.
+    * ``broadphase``: switches for measuring the broad phase, a dict with any of
+      ``"short_circuit"`` (True: the sound bounding-circle test, the default;
+      False: off; ``"lecture"``: the lecture's unsound test), ``"boxes"`` (the
+      swept-box overlap check) and ``"grid"`` (False: every pair is a
+      candidate); omitted keys are on. Switching a sound stage off only costs
+      time: the events are bit-identical. See ``World.broadphase``.
     * ``allow_overlap``: False (default) refuses to run while two bodies
       overlap (ValueError naming them); True lets each overlapping pair pass
       through each other until it has separated, with one ``OverlapWarning``
@@ -97,6 +103,7 @@ class World:
         friction_rule: str = "max",
         rest_height: float = 1e-4,
         allow_overlap: bool = False,
+        broadphase=None,
     ) -> None:
         self._gravity = check_vector("World", "gravity", gravity)
         self._default_elasticity = _check_elasticity("World", elasticity)
@@ -122,6 +129,7 @@ class World:
         if not isinstance(allow_overlap, bool):
             raise TypeError(f"World: allow_overlap must be True or False, got {allow_overlap!r}")
         self._allow_overlap = allow_overlap
+        self._state.Q[L.BROADPHASE] = _broadphase_bits(broadphase)
         self._handles: dict[int, Body] = {}
         self._primed = False
         self._unchecked: set[int] = set()
@@ -192,6 +200,36 @@ class World:
     @elasticity.setter
     def elasticity(self, value) -> None:
         self._default_elasticity = _check_elasticity("World", value)
+
+    @property
+    def broadphase(self) -> dict:
+        """Which broad-phase stages run: ``{"short_circuit": True | False | "lecture",
+        "boxes": bool, "grid": bool}`` (all True by default).
+
+        Assign a dict with any of these keys (omitted keys are on) to switch stages
+        off and measure what each saves, on the same scene: ``"boxes": False``
+        skips the swept-box overlap check (the prediction window stays
+        ``[now, min(h_i, h_j)]``), ``"grid": False`` makes every other body a
+        candidate (each pair is still predicted once per event),
+        ``"short_circuit": False`` skips the bounding-circle test. None of these
+        can change an event: they only skip work that cannot find a contact.
+        ``"short_circuit": "lecture"`` replaces the sound test by the lecture's,
+        which can cull real contacts (bodies then pass through each other); it
+        exists to count what it misses. Takes effect from the next prediction.
+        Raises TypeError or ValueError on anything else, leaving the world unchanged.
+        """
+        bits = int(self._state.Q[L.BROADPHASE])
+        if bits & L.NO_SHORT_CIRCUIT:
+            short_circuit = False
+        elif bits & L.LECTURE_TEST:
+            short_circuit = "lecture"
+        else:
+            short_circuit = True
+        return {"short_circuit": short_circuit, "boxes": not bits & L.NO_BOXES, "grid": not bits & L.NO_GRID}
+
+    @broadphase.setter
+    def broadphase(self, value) -> None:
+        self._state.Q[L.BROADPHASE] = _broadphase_bits(value)
 
     @property
     def bounds(self) -> tuple[float, float, float, float]:
@@ -1172,6 +1210,44 @@ def _restore_xy(F, i, old) -> None:
 def _owner(kind: str, options: dict) -> str:
     name = options.get("name")
     return kind if name is None else f"{kind} {name!r}"
+
+
+_BROADPHASE_KEYS = ("short_circuit", "boxes", "grid")
+
+
+def _broadphase_bits(value) -> int:
+    """The Q[BROADPHASE] bits for a ``broadphase`` option (None: every stage on)."""
+    if value is None:
+        return 0
+    if not isinstance(value, dict):
+        raise TypeError(
+            f"World: broadphase must be a dict with keys among {list(_BROADPHASE_KEYS)}, got {type(value).__name__}"
+        )
+    unknown = [key for key in value if key not in _BROADPHASE_KEYS]
+    if unknown:
+        raise ValueError(f"World: broadphase has unknown key(s) {unknown!r}; the keys are {list(_BROADPHASE_KEYS)}")
+    bits = 0
+    short_circuit = value.get("short_circuit", True)
+    if isinstance(short_circuit, str):
+        if short_circuit != "lecture":
+            raise ValueError(
+                f"World: broadphase['short_circuit'] must be True, False or 'lecture', got {short_circuit!r}"
+            )
+        bits |= L.LECTURE_TEST
+    elif isinstance(short_circuit, (bool, np.bool_)):
+        if not short_circuit:
+            bits |= L.NO_SHORT_CIRCUIT
+    else:
+        raise TypeError(
+            f"World: broadphase['short_circuit'] must be True, False or 'lecture', got {short_circuit!r}"
+        )
+    for key, bit in (("boxes", L.NO_BOXES), ("grid", L.NO_GRID)):
+        on = value.get(key, True)
+        if not isinstance(on, (bool, np.bool_)):
+            raise TypeError(f"World: broadphase[{key!r}] must be True or False, got {on!r}")
+        if not on:
+            bits |= bit
+    return bits
 
 
 def _positive(owner: str, what: str, value) -> float:

@@ -71,3 +71,23 @@ def cannot_touch_before(dx, dy, dvx, dvy, dax, day, reach, horizon):
     bound = (math.sqrt(dvx * dvx + dvy * dvy) + 0.5 * math.sqrt(dax * dax + day * day) * horizon) * horizon
     limit = (reach + bound) * SAFETY
     return limit * limit < dx * dx + dy * dy
+
+
+@njit(cache=True)
+def lecture_cannot_touch(dx, dy, dvx, dvy, dax, day, reach, horizon):
+    """The lecture's short-circuit test as its slides write it (unsound: measurement only).
+
+    Same arguments as ``cannot_touch_before`` (``d, dv, da``: body ``i`` relative to
+    body ``j``), with the frame ``t = horizon``. The slides' ``W = (x_i - x_j)^2 +
+    (y_i - y_j)^2 - (r_i + r_j)^2`` and ``S = |(d - c) t + (e - f) t^2 / 2, (k - l) t +
+    (m - n) t^2 / 2|`` (``c, d``: x velocities of ``i, j``; ``e, f``: x accelerations;
+    ``k, l`` and ``m, n`` the same along y) take the x velocity as ``j - i``
+    (``d - c = -dvx``) but every other term as ``i - j``; "no collision" when
+    ``S^2 < W``. Used only when ``World.broadphase`` asks for
+    ``short_circuit="lecture"``, to count the contacts it loses; see
+    docs/broadphase.md for why it is wrong.
+    """
+    sx = -dvx * horizon + 0.5 * dax * horizon * horizon
+    sy = dvy * horizon + 0.5 * day * horizon * horizon
+    w = dx * dx + dy * dy - reach * reach
+    return sx * sx + sy * sy < w

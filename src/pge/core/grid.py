@@ -115,3 +115,29 @@ def gather(S, i):
                         scratch[count] = j
                         count += 1
     return count
+
+
+@njit(cache=True)
+def gather_all(S, i):
+    """Every body ``gather`` could ever return for body ``i``, ignoring the cells.
+
+    Writes into ``scratch`` each other body filed in the grid (the moving ones)
+    and, for a moving ``i``, each live fixed body; returns how many. This is the
+    all-pairs candidate list that ``World.broadphase = {"grid": False}`` asks for,
+    to measure what the grid saves; it is a superset of ``gather``'s, so the
+    predictions (and the events) are the same.
+    """
+    I = S[1]
+    Q = S[4]
+    scratch = S[15]
+    # Bump the stamp as gather does, so that code reading stamps sees the same state.
+    Q[L.STAMP_COUNTER] += 1
+    moving = I[i, L.FIXED] == 0
+    count = 0
+    for j in range(I.shape[0]):
+        if j == i or I[j, L.ALIVE] == 0:
+            continue
+        if I[j, L.CELL] >= 0 or (moving and I[j, L.FIXED] != 0):
+            scratch[count] = j
+            count += 1
+    return count

@@ -83,7 +83,14 @@ STORM_CAP = 14  # events a run may hold before it is a storm (set by Python from
 FAST_BODY = 15  # a body whose travel step the clock cannot resolve (-1: none), found by `place`
 STORM_KINDS = 16  # first of five counts, one per event kind, of the current run
 EXCUSED_N = 21  # pairs in `excused`: they overlapped when the run began and do not collide yet
-NQ = 22
+BROADPHASE = 22  # broad-phase switches (bits below; 0: every stage on, the sound default)
+NQ = 23
+
+# ---- Q[BROADPHASE] bits: stages switched off to measure what they save (World.broadphase)
+NO_SHORT_CIRCUIT = 1  # skip cannot_touch_before: every box-overlapping pair is solved exactly
+NO_BOXES = 2  # skip the swept-box overlap check (the window is still min(h_i, h_j))
+NO_GRID = 4  # candidates are every body in the grid or fixed, not the neighbouring cells'
+LECTURE_TEST = 8  # the lecture's unsound short-circuit test instead of cannot_touch_before
 
 # ---- stats: int64 counters ---------------------------------------------------
 STAT_NAMES = (

@@ -15,9 +15,9 @@ import math
 import numpy as np
 from numba import njit
 
-from pge.broadphase.bounds import cannot_touch_before, swept_range, travel_horizon
+from pge.broadphase.bounds import cannot_touch_before, lecture_cannot_touch, swept_range, travel_horizon
 from pge.core import layout as L
-from pge.core.grid import file_in_cell, gather
+from pge.core.grid import file_in_cell, gather, gather_all
 from pge.core.motion import kernel_angle, orient, state_at
 from pge.core.overlap import overlap_depth
 from pge.core.queue import push
@@ -152,7 +152,16 @@ def predict(S, i, mark):
     P = S[3]
     stats = S[13]
     scratch = S[15]
-    n = gather(S, i)
+    # The broad-phase switches (World.broadphase), read once per call: all zero in
+    # normal runs, so each stage costs one predictable branch per pair.
+    switches = S[4][L.BROADPHASE]
+    boxes = (switches & L.NO_BOXES) == 0
+    short_circuit = (switches & L.NO_SHORT_CIRCUIT) == 0
+    lecture = (switches & L.LECTURE_TEST) != 0
+    if switches & L.NO_GRID:
+        n = gather_all(S, i)
+    else:
+        n = gather(S, i)
     stats[L.S_CANDIDATES] += n
     now = P[L.TIME]
     iax = F[i, L.AX]
@@ -174,7 +183,9 @@ def predict(S, i, mark):
             continue
         if j == isupport or I[j, L.SUPPORT] == i:
             continue  # a resting contact is not a collision
-        if F[j, L.BOX_X0] > bx1 or F[j, L.BOX_X1] < bx0 or F[j, L.BOX_Y0] > by1 or F[j, L.BOX_Y1] < by0:
+        if boxes and (
+            F[j, L.BOX_X0] > bx1 or F[j, L.BOX_X1] < bx0 or F[j, L.BOX_Y0] > by1 or F[j, L.BOX_Y1] < by0
+        ):
             stats[L.S_BOX_REJECTS] += 1
             continue
         end = F[j, L.HORIZON]
@@ -190,9 +201,15 @@ def predict(S, i, mark):
         dvy = ivy - jvy
         dax = iax - F[j, L.AX]
         day = iay - F[j, L.AY]
-        if cannot_touch_before(dx, dy, dvx, dvy, dax, day, F[i, L.REACH] + F[j, L.REACH], window):
-            stats[L.S_BOUND_REJECTS] += 1
-            continue
+        if short_circuit:
+            reach = F[i, L.REACH] + F[j, L.REACH]
+            if lecture:
+                culled = lecture_cannot_touch(dx, dy, dvx, dvy, dax, day, reach, window)
+            else:
+                culled = cannot_touch_before(dx, dy, dvx, dvy, dax, day, reach, window)
+            if culled:
+                stats[L.S_BOUND_REJECTS] += 1
+                continue
         if S[4][L.EXCUSED_N] > 0 and still_excused(S, i, j):
             continue
         stats[L.S_PREDICTIONS] += 1
