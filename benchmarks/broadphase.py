@@ -398,19 +398,11 @@ def _numbers(row: dict) -> dict:
 
 
 def git_commit(where: Path) -> str:
-    try:
-        commit = subprocess.run(
-            ["git", "-C", str(where), "rev-parse", "--short", "HEAD"], capture_output=True, text=True, timeout=10
-        ).stdout.strip()
-        dirty = subprocess.run(
-            ["git", "-C", str(where), "status", "--porcelain", "--untracked-files=no"],
-            capture_output=True,
-            text=True,
-            timeout=10,
-        ).stdout.strip()
-        return commit + ("+dirty" if commit and dirty else "")
-    except (OSError, subprocess.SubprocessError):
-        return ""
+    """The commit of the checkout holding ``where`` (``+dirty`` if changed): gas.py's."""
+    sys.path.insert(0, str(HERE))
+    from gas import git_commit as commit_of
+
+    return commit_of(where)
 
 
 def main(argv=None) -> int:
