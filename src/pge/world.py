@@ -909,7 +909,7 @@ class World:
         made = ", ".join(f"{count} {name}" for name, count in kinds.items())
         where = "; ".join(self._describe(i) for i in ids) or "no body (timers or frames)"
         return EventStormError(
-            f"event storm at time {when!r}: {int(Q[L.STORM_CAP])} events ({made}) within {span:.3g} s "
+            f"event storm at time {when!r}: {sum(kinds.values())} events ({made}) within {span:.3g} s "
             f"({ticks:.3g} ticks of the clock), more than the clock can separate; the last involved {where}. "
             "Something is speeding a body up without bound or trapping it at one instant",
             when,
