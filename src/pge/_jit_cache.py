@@ -13,7 +13,7 @@ import hashlib
 import os
 from pathlib import Path
 
-_COMPILED_PACKAGES = ("numerics", "toi", "broadphase", "core")
+_COMPILED_PACKAGES = ("numerics", "toi", "broadphase", "core", "contact")
 
 
 def source_hash() -> str:

@@ -170,9 +170,12 @@ class Body:
 
     @property
     def asleep(self) -> bool:
-        """True while the body sleeps in a pile that contact forces hold still (it makes
-        no events until something touches it or it is changed)."""
+        """True while the body sleeps in a pile that contact forces hold still, or in a
+        sleeping island (contact model "islands"): it makes no events until something
+        touches it or it is changed."""
         _, world = self._row()
+        if world._islands is not None:
+            return world._islands.asleep(self.id)
         return bool(world._state.I[self.id, L.SLEEP_NEXT] >= 0)
 
     @property

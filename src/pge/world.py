@@ -21,7 +21,8 @@ from pge.bodies import Body
 from pge.core import engine, grid, motion, overlap, queue
 from pge.core import layout as L
 from pge.core.state import EngineState
-from pge.core.tuning import MIN_TICKS
+from pge.contact.islands import Islands
+from pge.core.tuning import ISLAND_STEP, MIN_TICKS
 from pge.errors import EventStormError, OverlapWarning, TooFastError
 from pge.events import Collision, Frame, Stop, Timer
 from pge.geometry import check_number, check_vector
@@ -81,6 +82,11 @@ class World:
       overlap (ValueError naming them); True lets each overlapping pair pass
       through each other until it has separated, with one ``OverlapWarning``
       per pair, as PGE does (the classic ``pge`` module sets it).
+    * ``contact``: the contact model. ``"rules"`` (default): resting contact by the
+      rules of ``pge.core.contact`` (rest, piles, the pivot rule, sleep). ``"islands"``:
+      bodies in persistent contact form islands whose contacts are solved together every
+      ``contact_step`` seconds (default 1/240), while every other contact stays exact;
+      see docs/contact.md.
 
     A run raises ``pge.errors.TooFastError`` for a body too fast for the
     clock, and ``pge.errors.EventStormError`` for a run of events the clock
@@ -104,6 +110,8 @@ class World:
         rest_height: float = 1e-4,
         allow_overlap: bool = False,
         broadphase=None,
+        contact: str = "rules",
+        contact_step: float | None = None,
     ) -> None:
         self._gravity = check_vector("World", "gravity", gravity)
         self._default_elasticity = _check_elasticity("World", elasticity)
@@ -130,6 +138,15 @@ class World:
             raise TypeError(f"World: allow_overlap must be True or False, got {allow_overlap!r}")
         self._allow_overlap = allow_overlap
         self._state.Q[L.BROADPHASE] = _broadphase_bits(broadphase)
+        if contact not in ("rules", "islands"):
+            raise ValueError(f"World: contact must be 'rules' or 'islands', got {contact!r}")
+        self._contact = contact
+        step = ISLAND_STEP if contact_step is None else _positive("World", "contact_step", contact_step)
+        self._islands = None
+        if contact == "islands":
+            self._state.Q[L.CONTACT_MODEL] = L.ISLANDS
+            self._state.P[L.CONTACT_STEP] = step
+            self._islands = Islands(self, step)
         self._handles: dict[int, Body] = {}
         self._primed = False
         self._unchecked: set[int] = set()
@@ -329,7 +346,7 @@ class World:
         F[i] = 0.0
         I[i] = 0
         I[i, L.CELL] = I[i, L.NEXT] = I[i, L.PREV] = -1
-        I[i, L.SUPPORT] = I[i, L.RIDER_HEAD] = I[i, L.EDGE_OWNER] = I[i, L.SLEEP_NEXT] = -1
+        I[i, L.SUPPORT] = I[i, L.RIDER_HEAD] = I[i, L.EDGE_OWNER] = I[i, L.SLEEP_NEXT] = I[i, L.ISLAND] = I[i, L.LAST_OTHER] = -1
         F[i, L.SLEEP_TRY] = -math.inf
         F[i, L.FRICTION] = friction
         F[i, L.X], F[i, L.Y] = position
@@ -401,6 +418,8 @@ class World:
     def _forget(self, i: int) -> None:
         for hook in tuple(self._removal_hooks):
             hook(i)
+        if self._islands is not None:
+            self._islands.leave(i)
         self._watchers.pop(i, None)
         state = self._state
         was_fixed = bool(state.I[i, L.FIXED])
@@ -441,6 +460,9 @@ class World:
         """Release body ``i`` from resting contact, and every body resting on it; returns
         the bodies whose motion changed (advanced to now)."""
         state = self._state
+        if self._islands is not None:
+            self._islands.wake_near(i)
+            return []
         count = engine.release_body(state.S, i, self.time, state.group)
         return [int(j) for j in state.group[:count]]
 
@@ -597,6 +619,8 @@ class World:
         released = self._release(i)
         engine.advance(F, i, self.time)
         if fixed:
+            if self._islands is not None:
+                self._islands.leave(i)
             F[i, L.HELD_VX], F[i, L.HELD_VY] = F[i, L.VX], F[i, L.VY]
             F[i, L.HELD_OMEGA] = F[i, L.OMEGA]
             F[i, L.VX] = F[i, L.VY] = F[i, L.OMEGA] = 0.0
@@ -831,6 +855,13 @@ class World:
             if code == L.TOO_FAST:
                 raise self._too_fast_error()
             record = None
+            if code == L.JOINED:
+                a = int(out[L.OUT_A])
+                b = int(out[L.OUT_B])
+                self._islands.collided(a, b, out[L.OUT_JOIN] == 1.0, float(out[L.OUT_TIME]))
+                I = state.I
+                if out[L.OUT_IMPULSE] != 0.0 and (notify_all or I[a, L.NOTIFY] or I[b, L.NOTIFY]):
+                    code = L.COLLIDED
             if code == L.COLLIDED:
                 a = self._handles.get(int(out[L.OUT_A]))
                 b = self._handles.get(int(out[L.OUT_B]))

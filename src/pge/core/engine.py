@@ -312,6 +312,104 @@ def contact_geometry(S, a, b, feature):
 
 
 @njit(cache=True)
+def joins(S, a, b, nx, ny, leaving):
+    """Whether the contact of ``a`` and ``b`` (normal ``n`` from b to a), leaving at
+    ``leaving`` after its impulse, is persistent: the bodies' accelerations would bring
+    them back before they had parted by the rest height (``P[REST_HEIGHT]`` times the
+    smaller reach), or one of them already belongs to an island. Then the bodies join one
+    island (contact model ISLANDS), whose step solves the contact from now on. With no
+    acceleration anywhere (a gas, a game in space) no contact is persistent."""
+    F = S[0]
+    I = S[1]
+    scale = max(math.hypot(F[a, L.AX], F[a, L.AY]), math.hypot(F[b, L.AX], F[b, L.AY]))
+    if not scale > 0.0:
+        return False
+    reach = min(F[a, L.REACH], F[b, L.REACH])
+    if leaving * abs(leaving) >= 2.0 * scale * S[3][L.REST_HEIGHT] * reach:
+        return False
+    pressing = (F[a, L.AX] - F[b, L.AX]) * nx + (F[a, L.AY] - F[b, L.AY]) * ny < 0.0
+    return pressing or I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0
+
+
+@njit(cache=True)
+def collide_free(S, a, b, feature, t):
+    """The impact of ``a`` and ``b`` at ``t`` in the contact model ISLANDS: one exact impulse
+    at the contact point (restitution, Coulomb friction, the energy guard of
+    ``pge.core.impulse``) on two free bodies; returns the normal impulse (0: a graze).
+
+    ``out`` gets the record and ``OUT_JOIN``: 1 if the contact is persistent (``joins``),
+    2 if it is not but a body of an island took part (which may sleep), else 0; when not 0
+    the loop hands the collision to Python, which joins or wakes the islands.
+    """
+    F = S[0]
+    I = S[1]
+    Q = S[4]
+    out = S[14]
+    advance(F, a, t)
+    advance(F, b, t)
+    orient(F, I, S[2], S[18], a, t)
+    orient(F, I, S[2], S[18], b, t)
+    px, py, nx, ny, _, _ = contact_geometry(S, a, b, feature)
+    tx = -ny
+    ty = nx
+    rax = px - F[a, L.X]
+    ray = py - F[a, L.Y]
+    rbx = px - F[b, L.X]
+    rby = py - F[b, L.Y]
+    ux = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
+    uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
+    normal_speed = ux * nx + uy * ny
+    impulse = 0.0
+    if normal_speed < 0.0:
+        restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
+        mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
+        ann, ant, att = contact_response(F, a, False, True, rax, ray, nx, ny, tx, ty)
+        bnn, bnt, btt = contact_response(F, b, False, True, rbx, rby, nx, ny, tx, ty)
+        knn = ann + bnn
+        if knn > 0.0:
+            impulse, tangential = contact_impulse(
+                normal_speed, ux * tx + uy * ty, knn, ant + bnt, att + btt, restitution, mu
+            )
+            jx = impulse * nx + tangential * tx
+            jy = impulse * ny + tangential * ty
+            apply_impulse(F, a, False, True, jx, jy, rax, ray)
+            apply_impulse(F, b, False, True, -jx, -jy, rbx, rby)
+    ux = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
+    uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
+    # A pair that collides again within one step of the islands (a ball bouncing lower and
+    # lower, two spinning polygons grinding, a corner and then another corner, a body
+    # squeezed between two) is a persistent contact too: its island's step then takes all
+    # its points at once. So no pair makes more than one impact per step: the cost of
+    # contact is bounded by the step rate, whatever the scene.
+    within = S[3][L.CONTACT_STEP]
+    again = (I[a, L.LAST_OTHER] == b and t - F[a, L.LAST_HIT] <= within) or (
+        I[b, L.LAST_OTHER] == a and t - F[b, L.LAST_HIT] <= within
+    )
+    F[a, L.LAST_HIT] = t
+    F[b, L.LAST_HIT] = t
+    I[a, L.LAST_OTHER] = b
+    I[b, L.LAST_OTHER] = a
+    join = 1.0 if again or joins(S, a, b, nx, ny, ux * nx + uy * ny) else 0.0
+    if join == 0.0 and (I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0):
+        join = 2.0  # no join, but an island is hit: Python wakes it if it sleeps
+    if I[a, L.FIXED] == 0:
+        touch(S, a)
+    if I[b, L.FIXED] == 0:
+        touch(S, b)
+    out[L.OUT_TIME] = t
+    out[L.OUT_A] = a
+    out[L.OUT_B] = b
+    out[L.OUT_PX] = px
+    out[L.OUT_PY] = py
+    out[L.OUT_NX] = nx
+    out[L.OUT_NY] = ny
+    out[L.OUT_IMPULSE] = impulse
+    out[L.OUT_SPEED] = -normal_speed
+    out[L.OUT_JOIN] = join
+    return impulse
+
+
+@njit(cache=True)
 def collide(S, a, b, feature, t):
     """Resolve the contact of ``a`` and ``b`` at ``t``; returns the normal impulse (0: a graze).
 
@@ -321,6 +419,9 @@ def collide(S, a, b, feature, t):
     support passes the normal part on to it (it keeps resting), one pulled
     away is released first. Afterwards the slower body may come to rest.
     """
+    if S[4][L.CONTACT_MODEL] == L.ISLANDS:
+        return collide_free(S, a, b, feature, t)
+    S[14][L.OUT_JOIN] = 0.0
     F = S[0]
     I = S[1]
     Q = S[4]
@@ -565,7 +666,8 @@ def run(S, until, notify_all):
     COLLIDED: a collision that Python must hear about (``notify_all`` or a
     body flagged NOTIFY); its record is in ``out``. FIRED_TIMER, FIRED_FRAME:
     ``out[OUT_ID]`` names it. NEED_SPACE: grow the event arrays, call again.
-    EMPTY: no events are left. STORM: the progress watch (``watch``) found a run of
+    EMPTY: no events are left. JOINED: a persistent contact (``collide_free``, record in
+    ``out``) joins its bodies' islands. STORM: the progress watch (``watch``) found a run of
     events the clock cannot separate; ``out`` names the last event's bodies. TOO_FAST:
     ``Q[FAST_BODY]``'s travel step is shorter than the clock can resolve (``place``);
     nothing has used its box.
@@ -611,13 +713,17 @@ def run(S, until, notify_all):
             return _report(out, t, a, b, L.STORM)
         if kind == L.COLLISION:
             stats[L.S_EVENTS] += 1
-            if collide(S, a, b, feature, t) == 0.0:
+            impulse = collide(S, a, b, feature, t)
+            if impulse == 0.0:
                 stats[L.S_GRAZES] += 1
-                continue
-            stats[L.S_COLLISIONS] += 1
-            if I[a, L.FIXED] == 0 and I[b, L.FIXED] == 0:
-                stats[L.S_PAIR_COLLISIONS] += 1
-            if notify_all or I[a, L.NOTIFY] != 0 or I[b, L.NOTIFY] != 0:
+            else:
+                stats[L.S_COLLISIONS] += 1
+                if I[a, L.FIXED] == 0 and I[b, L.FIXED] == 0:
+                    stats[L.S_PAIR_COLLISIONS] += 1
+            if out[L.OUT_JOIN] != 0.0:
+                stats[L.S_JOINS] += 1
+                return L.JOINED
+            if impulse != 0.0 and (notify_all or I[a, L.NOTIFY] != 0 or I[b, L.NOTIFY] != 0):
                 return L.COLLIDED
         elif kind == L.CONTACT_EVENT:
             stats[L.S_EVENTS] += 1

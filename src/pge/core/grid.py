@@ -69,8 +69,9 @@ def file_in_cell(S, i):
 
 
 @njit(cache=True)
-def gather(S, i):
-    """Write into ``scratch`` every body whose box may overlap body ``i``'s; return how many.
+def gather(S, i, pad=0.0):
+    """Write into ``scratch`` every body whose box may overlap body ``i``'s box grown by
+    ``pad`` on every side; return how many.
 
     Moving bodies come from the lists of the box's cells and of one more row
     and column below; fixed bodies (only for a moving ``i``) from the static
@@ -88,10 +89,10 @@ def gather(S, i):
     Q[L.STAMP_COUNTER] = stamp
     nx = Q[L.GRID_NX]
     ny = Q[L.GRID_NY]
-    ix0 = cell_index(P, F[i, L.BOX_X0], P[L.GRID_X0], nx) - 1
-    iy0 = cell_index(P, F[i, L.BOX_Y0], P[L.GRID_Y0], ny) - 1
-    ix1 = cell_index(P, F[i, L.BOX_X1], P[L.GRID_X0], nx)
-    iy1 = cell_index(P, F[i, L.BOX_Y1], P[L.GRID_Y0], ny)
+    ix0 = cell_index(P, F[i, L.BOX_X0] - pad, P[L.GRID_X0], nx) - 1
+    iy0 = cell_index(P, F[i, L.BOX_Y0] - pad, P[L.GRID_Y0], ny) - 1
+    ix1 = cell_index(P, F[i, L.BOX_X1] + pad, P[L.GRID_X0], nx)
+    iy1 = cell_index(P, F[i, L.BOX_Y1] + pad, P[L.GRID_Y0], ny)
     if ix0 < 0:
         ix0 = 0
     if iy0 < 0:

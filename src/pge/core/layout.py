@@ -30,7 +30,8 @@ ORIENT = 35  # the angle the body's outline rows in OL are turned to
 HELD_OMEGA = 36  # angular velocity kept while fixed, restored by unfix
 SLEEP_TRY = 37  # when the body last failed to fall asleep (pge.core.sleep)
 ALPHA = 38  # angular acceleration: nonzero only for a circle rolling or skidding on a flat rest
-NF = 39
+LAST_HIT = 39  # contact model ISLANDS: time of the body's last collision (with I[LAST_OTHER])
+NF = 40
 
 # ---- I: int64 per body -------------------------------------------------------
 KIND = 0  # pge.toi.CIRCLE or POLYGON
@@ -50,7 +51,9 @@ REST_MODE = 16  # NOT_RESTING, SLIDING or STUCK (static friction holds it)
 EDGE_OWNER = 17  # while resting on a flat contact: the body whose edge carries it (-1: curved contact)
 EDGE_INDEX = 18  # that edge's index in its owner's outline
 SLEEP_NEXT = 19  # while asleep: the next body of its island (a ring); -1 when awake
-NI = 20
+ISLAND = 20  # contact model "islands": the island the body belongs to (-1: none), see pge.contact
+LAST_OTHER = 21  # contact model ISLANDS: the body of its last collision (-1: none)
+NI = 22
 
 NOT_RESTING, SLIDING, STUCK = 0, 1, 2
 
@@ -63,7 +66,8 @@ MARGIN = 6  # safety margin added to every swept box
 OVERLAP_TOLERANCE = 7
 REST_HEIGHT = 8  # a bounce lower than this times the body's bounding radius becomes resting contact
 STORM_START = 9  # time of the first event of the current run of close events (the progress watch)
-NP = 10
+CONTACT_STEP = 10  # contact model ISLANDS: the islands' step length h
+NP = 11
 
 # ---- Q: int64 world parameters -----------------------------------------------
 GRID_NX, GRID_NY = 0, 1
@@ -84,7 +88,10 @@ FAST_BODY = 15  # a body whose travel step the clock cannot resolve (-1: none), 
 STORM_KINDS = 16  # first of five counts, one per event kind, of the current run
 EXCUSED_N = 21  # pairs in `excused`: they overlapped when the run began and do not collide yet
 BROADPHASE = 22  # broad-phase switches (bits below; 0: every stage on, the sound default)
-NQ = 23
+CONTACT_MODEL = 23  # RULES (resting-contact rules in core.contact) or ISLANDS (pge.contact)
+NQ = 24
+
+RULES, ISLANDS = 0, 1  # the values of Q[CONTACT_MODEL]
 
 # ---- Q[BROADPHASE] bits: stages switched off to measure what they save (World.broadphase)
 NO_SHORT_CIRCUIT = 1  # skip cannot_touch_before: every box-overlapping pair is solved exactly
@@ -118,6 +125,8 @@ STAT_NAMES = (
     "tips",
     "far_payments",
     "pile_solves",
+    "joins",
+    "island_steps",
 )
 (
     S_EVENTS,
@@ -144,8 +153,10 @@ STAT_NAMES = (
     S_TIPS,
     S_FAR_PAYMENTS,
     S_PILE_SOLVES,
-) = range(24)
-NSTATS = 24
+    S_JOINS,
+    S_ISLAND_STEPS,
+) = range(26)
+NSTATS = 26
 
 # ---- event kinds (high bits of the heap key; equal times pop in this order) --
 COLLISION, CONTACT_EVENT, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3, 4
@@ -155,7 +166,8 @@ ID_SHIFT = 29
 
 # ---- out: the record of the event that returned control to Python -----------
 OUT_TIME, OUT_A, OUT_B, OUT_PX, OUT_PY, OUT_NX, OUT_NY, OUT_IMPULSE, OUT_SPEED, OUT_ID, OUT_EPOCH = range(11)
-NOUT = 11
+OUT_JOIN = 11  # 1.0: the collision in `out` joins its bodies' islands (contact model ISLANDS)
+NOUT = 12
 
 # ---- return codes of the loop --------------------------------------------------
 DONE = 0  # the next event is after `until`
@@ -166,6 +178,7 @@ NEED_SPACE = 4  # grow the event arrays and call again
 EMPTY = 5  # no events left
 STORM = 6  # a run of events the clock cannot separate: a zero-time, Zeno or creeping loop
 TOO_FAST = 7  # a body moves too fast for the clock (``Q[FAST_BODY]`` names it)
+JOINED = 8  # a slow collision (in `out`) joins its bodies' islands: Python merges them
 
 # ---- outline array columns ------------------------------------------------------
 O_X, O_Y, O_NX, O_NY, O_LENGTH = 0, 1, 2, 3, 4

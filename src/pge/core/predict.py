@@ -175,6 +175,7 @@ def predict(S, i, mark):
     ifixed = I[i, L.FIXED] != 0
     ikind = I[i, L.KIND]
     isupport = I[i, L.SUPPORT]
+    iisland = I[i, L.ISLAND]
     for k in range(n):
         j = scratch[k]
         if mark != 0 and I[j, L.MARK] == mark:
@@ -183,6 +184,10 @@ def predict(S, i, mark):
             continue
         if j == isupport or I[j, L.SUPPORT] == i:
             continue  # a resting contact is not a collision
+        if iisland >= 0 and (I[j, L.ISLAND] == iisland or I[j, L.FIXED] != 0):
+            continue  # the island's step solves its contacts (pge.contact.island)
+        if ifixed and I[j, L.ISLAND] >= 0:
+            continue
         if boxes and (
             F[j, L.BOX_X0] > bx1 or F[j, L.BOX_X1] < bx0 or F[j, L.BOX_Y0] > by1 or F[j, L.BOX_Y1] < by0
         ):

@@ -26,6 +26,8 @@ class EngineState:
         self.I[:, L.SUPPORT] = -1
         self.I[:, L.RIDER_HEAD] = -1
         self.I[:, L.SLEEP_NEXT] = -1
+        self.I[:, L.ISLAND] = -1
+        self.I[:, L.LAST_OTHER] = -1
         self.OL = np.zeros((64, 5))  # polygon outlines turned to each body's ORIENT angle
         self.OB = np.zeros((64, 5))  # the same outlines unturned (angle 0): the rotating kernels' input
         self.n_outline = 0
@@ -113,6 +115,8 @@ class EngineState:
             I[self.n :, L.SUPPORT] = -1
             I[self.n :, L.RIDER_HEAD] = -1
             I[self.n :, L.SLEEP_NEXT] = -1
+            I[self.n :, L.ISLAND] = -1
+            I[self.n :, L.LAST_OTHER] = -1
             self.F, self.I = F, I
             self.scratch = np.zeros(capacity, dtype=np.int64)
             pending = np.zeros(4 * capacity + 16, dtype=np.int64)

@@ -22,3 +22,27 @@ STORM_SPAN = 1e-9
 STORM_TICKS = 8.0
 #: a travel step shorter than this many clock ticks is beyond what the clock can resolve
 MIN_TICKS = 64.0
+
+# ---- the contact model "islands" (pge.contact; docs/contact.md) ----------------------------
+
+#: seconds between two steps of an awake island (World(contact_step=...) overrides it)
+ISLAND_STEP = 1.0 / 240.0
+#: at most this many sweeps of the sequential-impulse solve at each step (it always returns)
+ISLAND_ITERATIONS = 400
+#: the solve stops early once no contact's speed is off by more than this times h |a| (the
+#: speed gravity gives in one step)
+SOLVE_TOLERANCE = 1e-6
+#: a pair is in an island's manifold while its gap is below its step travel plus this times
+#: the smaller bounding radius (so that resting contacts stay listed)
+CONTACT_MARGIN = 0.01
+#: the part of an overlap a step pushes out (the rest at the following steps)
+PUSH_RATE = 0.2
+#: a gap below this times the smaller bounding radius is touching (restitution may act)
+TOUCHING = 1e-6
+#: polygons' reference face: the second polygon's face only if its separation is larger by
+#: more than this times the sum of bounding radii (no flicker between steps)
+FACE_HYSTERESIS = 1e-3
+#: an island falls asleep when every body's mean speed (plus spin times reach) stays below
+#: this times sqrt(|acceleration| * reach) for SLEEP_TIME seconds
+SLEEP_SPEED = 0.01
+SLEEP_TIME = 0.5

@@ -1,0 +1,625 @@
+"""One step of an island: its contacts solved together, compiled.
+
+Between steps every body of an island flies in closed form like any other body (constant
+acceleration, constant spin), so its contacts with bodies outside the island are predicted
+exactly. At a step, at time ``t``, the island's contacts (``pge.contact.manifold``: every pair
+of its bodies, and each body with the fixed bodies near it, closer than the step's travel) are
+solved together by sequential impulses with Coulomb friction, on the bodies' *mean* velocities
+over the coming step ``v + h a / 2``: a contact closing no faster than its gap over ``h`` is
+left alone (speculative), a touching one stops closing (sticking, or sliding at the friction
+cone's edge), an overlapping one is pushed out by ``PUSH_RATE`` of its depth. Since positions
+over the step are exact, a body held on a face starts each step rising at ``h |a| / 2`` and
+lands at its end: a hop of ``h^2 |a| / 8``, reversed without loss at every step.
+
+Stages: ``_start`` (bodies to ``t``, mean velocities, travel margins), ``_collect`` (the
+manifold), ``_prepare`` (lever arms, effective masses, targets, last step's impulses),
+``_solve`` (the sweeps), ``_finish`` (velocities back from mean ones, the energy guard, the
+island's parts and the bodies that left it, the touch).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from pge.contact.manifold import (
+    KEY,
+    NCOLUMNS,
+    NX,
+    NY,
+    PX,
+    PY,
+    SEPARATION,
+    circle_circle_points,
+    circle_polygon_points,
+    polygon_polygon_points,
+)
+from pge.core import layout as L
+from pge.core.contact import combine
+from pge.core.engine import touch
+from pge.core.grid import gather
+from pge.core.motion import advance, orient
+from pge.core.tuning import (
+    CONTACT_MARGIN,
+    FACE_HYSTERESIS,
+    ISLAND_ITERATIONS,
+    PUSH_RATE,
+    SOLVE_TOLERANCE,
+    TOUCHING,
+)
+
+CIRCLE = 0
+# columns of the solver's contact rows, after the manifold's
+RAX, RAY, RBX, RBY, KN, KT, TARGET, LAMBDA_N, LAMBDA_T, MU = range(NCOLUMNS, NCOLUMNS + 10)
+NSOLVE = NCOLUMNS + 10
+# the warm-start key of a contact: (body a, body b, manifold key) in one integer
+_BODY_BITS = 21
+_KEY_BITS = 16
+
+
+@njit(cache=True)
+def _start(S, members, local, h, t):
+    """Bodies to ``t``, outlines turned; mean velocities ``(vx, vy, spin)`` over the step and
+    each body's travel margin."""
+    F = S[0]
+    I = S[1]
+    m = members.shape[0]
+    mean = np.empty((m, 3))
+    margin = np.empty(m)
+    for k in range(m):
+        i = members[k]
+        local[i] = k
+        advance(F, i, t)
+        orient(F, I, S[2], S[18], i, t)
+        ax = F[i, L.AX]
+        ay = F[i, L.AY]
+        mean[k, 0] = F[i, L.VX] + 0.5 * h * ax
+        mean[k, 1] = F[i, L.VY] + 0.5 * h * ay
+        mean[k, 2] = F[i, L.OMEGA]
+        travel = math.hypot(mean[k, 0], mean[k, 1]) + abs(mean[k, 2]) * F[i, L.REACH]
+        margin[k] = h * travel + 0.125 * h * h * math.hypot(ax, ay)
+    return mean, margin
+
+
+@njit(cache=True)
+def _points(S, i, j, margin, rows, count):
+    """Append the manifold of bodies ``i`` and ``j`` (normal from j to i)."""
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    xi = F[i, L.X]
+    yi = F[i, L.Y]
+    xj = F[j, L.X]
+    yj = F[j, L.Y]
+    if I[i, L.KIND] == CIRCLE:
+        if I[j, L.KIND] == CIRCLE:
+            return circle_circle_points(xi, yi, F[i, L.RADIUS], xj, yj, F[j, L.RADIUS], margin, rows, count)
+        return circle_polygon_points(
+            xi, yi, F[i, L.RADIUS], xj, yj, OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], False, margin, rows, count
+        )
+    if I[j, L.KIND] == CIRCLE:
+        return circle_polygon_points(
+            xj, yj, F[j, L.RADIUS], xi, yi, OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], True, margin, rows, count
+        )
+    tolerance = FACE_HYSTERESIS * (F[i, L.REACH] + F[j, L.REACH])
+    return polygon_polygon_points(
+        xi, yi, OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], xj, yj, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N],
+        margin, tolerance, rows, count,
+    )
+
+
+@njit(cache=True)
+def _collect(S, members, local, margin, t):
+    """The island's manifold: contact rows and, per row, the two bodies' local indices (-1:
+    a fixed body) and ids."""
+    F = S[0]
+    I = S[1]
+    scratch = S[15]
+    m = members.shape[0]
+    island = I[members[0], L.ISLAND]
+    capacity = 16 + 8 * m
+    rows = np.zeros((capacity, NSOLVE))
+    pairs = np.empty((capacity, 4), dtype=np.int64)
+    count = 0
+    for k in range(m):
+        i = members[k]
+        own = CONTACT_MARGIN * F[i, L.REACH]
+        n = gather(S, i, margin[k] + own)
+        for q in range(n):
+            j = scratch[q]
+            if I[j, L.FIXED] != 0:
+                other = -1
+                pad = margin[k] + own
+                orient(F, I, S[2], S[18], j, t)
+            elif I[j, L.ISLAND] == island and local[j] > k:
+                other = local[j]
+                pad = margin[k] + margin[other] + CONTACT_MARGIN * min(F[i, L.REACH], F[j, L.REACH])
+            else:
+                continue
+            if count + 2 > capacity:
+                capacity *= 2
+                grown = np.zeros((capacity, NSOLVE))
+                grown[:count] = rows[:count]
+                rows = grown
+                grown_pairs = np.empty((capacity, 4), dtype=np.int64)
+                grown_pairs[:count] = pairs[:count]
+                pairs = grown_pairs
+            before = count
+            count = _points(S, i, j, pad, rows, count)
+            for c in range(before, count):
+                pairs[c, 0] = k
+                pairs[c, 1] = other
+                pairs[c, 2] = i
+                pairs[c, 3] = j
+    return rows, pairs, count
+
+
+@njit(cache=True, inline="always")
+def _contact_key(i, j, key):
+    return ((i << _BODY_BITS) | j) << _KEY_BITS | key
+
+
+@njit(cache=True)
+def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
+    """Lever arms, effective masses, friction and target normal speeds of every row, and the
+    impulses the same contact took at the last step (warm start)."""
+    F = S[0]
+    Q = S[4]
+    rest_height = S[3][L.REST_HEIGHT]
+    keys = np.empty(count, dtype=np.int64)
+    for c in range(count):
+        i = pairs[c, 2]
+        j = pairs[c, 3]
+        px = rows[c, PX]
+        py = rows[c, PY]
+        nx = rows[c, NX]
+        ny = rows[c, NY]
+        tx = -ny
+        ty = nx
+        rax = px - F[i, L.X]
+        ray = py - F[i, L.Y]
+        rbx = px - F[j, L.X]
+        rby = py - F[j, L.Y]
+        rows[c, RAX] = rax
+        rows[c, RAY] = ray
+        rows[c, RBX] = rbx
+        rows[c, RBY] = rby
+        ran = rax * ny - ray * nx
+        rbn = rbx * ny - rby * nx
+        rat = rax * ty - ray * tx
+        rbt = rbx * ty - rby * tx
+        ma = F[i, L.INV_MASS]
+        mb = F[j, L.INV_MASS]
+        ia = F[i, L.INV_INERTIA]
+        ib = F[j, L.INV_INERTIA]
+        rows[c, KN] = ma + mb + ia * ran * ran + ib * rbn * rbn
+        rows[c, KT] = ma + mb + ia * rat * rat + ib * rbt * rbt
+        rows[c, MU] = combine(F[i, L.FRICTION], F[j, L.FRICTION], Q[L.FRICTION_RULE])
+        separation = rows[c, SEPARATION]
+        if separation > 0.0:
+            target = -separation / h  # may close by its gap, no more
+        else:
+            target = -PUSH_RATE * separation / h
+        reach = min(F[i, L.REACH], F[j, L.REACH])
+        if separation <= TOUCHING * reach:
+            # Velocities now (not mean ones): a touching contact closing fast enough to bounce
+            # higher than the rest height bounces.
+            ux = F[i, L.VX] - F[i, L.OMEGA] * ray - (F[j, L.VX] - F[j, L.OMEGA] * rby)
+            uy = F[i, L.VY] + F[i, L.OMEGA] * rax - (F[j, L.VY] + F[j, L.OMEGA] * rbx)
+            closing = -(ux * nx + uy * ny)
+            e = combine(F[i, L.ELASTICITY], F[j, L.ELASTICITY], Q[L.RULE])
+            pressing = max(math.hypot(F[i, L.AX], F[i, L.AY]), math.hypot(F[j, L.AX], F[j, L.AY]))
+            bounce = e * closing
+            if closing > 0.0 and bounce * bounce > 2.0 * pressing * rest_height * reach:
+                target = max(target, bounce)
+        rows[c, TARGET] = target
+        key = _contact_key(i, j, np.int64(rows[c, KEY]))
+        keys[c] = key
+        rows[c, LAMBDA_N] = 0.0
+        rows[c, LAMBDA_T] = 0.0
+        if warm_keys.shape[0] > 0:
+            at = np.searchsorted(warm_keys, key)
+            if at < warm_keys.shape[0] and warm_keys[at] == key:
+                rows[c, LAMBDA_N] = warm_impulses[at, 0]
+                rows[c, LAMBDA_T] = warm_impulses[at, 1]
+    return keys
+
+
+@njit(cache=True, inline="always")
+def _push_at(F, mean, pairs, c, jx, jy, rax, ray, rbx, rby):
+    """Apply the impulse ``(jx, jy)`` at lever arms ``ra`` (first body) and ``rb`` (second,
+    which takes it reversed; a fixed body does not move) to the mean velocities of row
+    ``c``'s two bodies."""
+    ka = pairs[c, 0]
+    i = pairs[c, 2]
+    mean[ka, 0] += jx * F[i, L.INV_MASS]
+    mean[ka, 1] += jy * F[i, L.INV_MASS]
+    mean[ka, 2] += (rax * jy - ray * jx) * F[i, L.INV_INERTIA]
+    kb = pairs[c, 1]
+    if kb >= 0:
+        j = pairs[c, 3]
+        mean[kb, 0] -= jx * F[j, L.INV_MASS]
+        mean[kb, 1] -= jy * F[j, L.INV_MASS]
+        mean[kb, 2] -= (rbx * jy - rby * jx) * F[j, L.INV_INERTIA]
+
+
+@njit(cache=True, inline="always")
+def _push(F, mean, pairs, rows, c, jn, jt):
+    """Apply impulse ``jn`` along the normal and ``jt`` along the tangent at row ``c``'s point."""
+    nx = rows[c, NX]
+    ny = rows[c, NY]
+    _push_at(F, mean, pairs, c, jn * nx - jt * ny, jn * ny + jt * nx, rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY])
+
+
+@njit(cache=True, inline="always")
+def _relative_at(mean, pairs, c, rax, ray, rbx, rby):
+    """Relative mean velocity (first body minus second) of row ``c``'s bodies at lever arms
+    ``ra`` and ``rb``."""
+    ka = pairs[c, 0]
+    kb = pairs[c, 1]
+    ux = mean[ka, 0] - mean[ka, 2] * ray
+    uy = mean[ka, 1] + mean[ka, 2] * rax
+    if kb >= 0:
+        ux -= mean[kb, 0] - mean[kb, 2] * rby
+        uy -= mean[kb, 1] + mean[kb, 2] * rbx
+    return ux, uy
+
+
+@njit(cache=True, inline="always")
+def _relative(mean, pairs, rows, c):
+    """Relative mean velocity of row ``c``'s contact point (first body minus second)."""
+    return _relative_at(mean, pairs, c, rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY])
+
+
+@njit(cache=True, inline="always")
+def _midpoint(rows, c):
+    """Lever arms of the midpoint of rows ``c`` and ``c + 1`` (a pair's two points)."""
+    d = c + 1
+    return (
+        0.5 * (rows[c, RAX] + rows[d, RAX]),
+        0.5 * (rows[c, RAY] + rows[d, RAY]),
+        0.5 * (rows[c, RBX] + rows[d, RBX]),
+        0.5 * (rows[c, RBY] + rows[d, RBY]),
+    )
+
+
+@njit(cache=True, inline="always")
+def _friction(F, mean, rows, pairs, c):
+    """Row ``c``'s friction impulse, within the cone of its normal impulse; returns its change."""
+    if not (rows[c, KT] > 0.0 and rows[c, MU] > 0.0):
+        return 0.0
+    ux, uy = _relative(mean, pairs, rows, c)
+    ut = -ux * rows[c, NY] + uy * rows[c, NX]
+    limit = rows[c, MU] * rows[c, LAMBDA_N]
+    old = rows[c, LAMBDA_T]
+    new = min(max(old - ut / rows[c, KT], -limit), limit)
+    rows[c, LAMBDA_T] = new
+    _push(F, mean, pairs, rows, c, 0.0, new - old)
+    return abs(new - old)
+
+
+@njit(cache=True, inline="always")
+def _normal(F, mean, rows, pairs, c):
+    """Row ``c``'s normal impulse alone (never pulling); returns its change."""
+    if not rows[c, KN] > 0.0:
+        return 0.0
+    ux, uy = _relative(mean, pairs, rows, c)
+    un = ux * rows[c, NX] + uy * rows[c, NY]
+    old = rows[c, LAMBDA_N]
+    new = max(old + (rows[c, TARGET] - un) / rows[c, KN], 0.0)
+    rows[c, LAMBDA_N] = new
+    _push(F, mean, pairs, rows, c, new - old, 0.0)
+    return abs(new - old)
+
+
+@njit(cache=True)
+def _friction_pair(F, mean, rows, pairs, c):
+    """The friction of a pair's two points (rows ``c`` and ``c + 1``) as one impulse at their
+    midpoint, within the cone of their summed normal impulses: the two points' tangential
+    constraints are one (the pair slides or sticks as a whole), and solving them apart makes
+    the sweeps fight over how to share it. Kept in row ``c``; returns its change."""
+    d = c + 1
+    i = pairs[c, 2]
+    j = pairs[c, 3]
+    nx = rows[c, NX]
+    ny = rows[c, NY]
+    tx = -ny
+    ty = nx
+    rax, ray, rbx, rby = _midpoint(rows, c)
+    mu = rows[c, MU]
+    rat = rax * ty - ray * tx
+    rbt = rbx * ty - rby * tx
+    kt = F[i, L.INV_MASS] + F[j, L.INV_MASS] + F[i, L.INV_INERTIA] * rat * rat + F[j, L.INV_INERTIA] * rbt * rbt
+    if not (kt > 0.0 and mu > 0.0):
+        return 0.0
+    ux, uy = _relative_at(mean, pairs, c, rax, ray, rbx, rby)
+    ut = ux * tx + uy * ty
+    limit = mu * (rows[c, LAMBDA_N] + rows[d, LAMBDA_N])
+    old = rows[c, LAMBDA_T] + rows[d, LAMBDA_T]
+    new = min(max(old - ut / kt, -limit), limit)
+    rows[c, LAMBDA_T] = new
+    rows[d, LAMBDA_T] = 0.0
+    _push_at(F, mean, pairs, c, (new - old) * tx, (new - old) * ty, rax, ray, rbx, rby)
+    return abs(new - old)
+
+
+@njit(cache=True)
+def _normal_pair(F, mean, rows, pairs, c):
+    """The normal impulses of rows ``c`` and ``c + 1`` (two points of one pair, sharing a
+    normal) solved together: the 2x2 complementarity problem ``u = K x + b >= target``,
+    ``x >= 0``, ``x (u - target) = 0``, by trying its four cases (both pushing, one, none).
+    Falls back to the rows one at a time when ``K`` is too ill-conditioned or no case fits
+    (rounding). Returns the largest change."""
+    d = c + 1
+    nx = rows[c, NX]
+    ny = rows[c, NY]
+    i = pairs[c, 2]
+    j = pairs[c, 3]
+    k11 = rows[c, KN]
+    k22 = rows[d, KN]
+    k12 = F[i, L.INV_MASS] + F[j, L.INV_MASS]
+    k12 += F[i, L.INV_INERTIA] * (rows[c, RAX] * ny - rows[c, RAY] * nx) * (rows[d, RAX] * ny - rows[d, RAY] * nx)
+    k12 += F[j, L.INV_INERTIA] * (rows[c, RBX] * ny - rows[c, RBY] * nx) * (rows[d, RBX] * ny - rows[d, RBY] * nx)
+    det = k11 * k22 - k12 * k12
+    if not (k11 > 0.0 and k22 > 0.0 and det > 1e-6 * k11 * k22):
+        return max(_normal(F, mean, rows, pairs, c), _normal(F, mean, rows, pairs, d))
+    ux, uy = _relative(mean, pairs, rows, c)
+    u1 = ux * nx + uy * ny
+    ux, uy = _relative(mean, pairs, rows, d)
+    u2 = ux * nx + uy * ny
+    a1 = rows[c, LAMBDA_N]
+    a2 = rows[d, LAMBDA_N]
+    # u - target as a function of the new impulses x: K x + b
+    b1 = u1 - rows[c, TARGET] - (k11 * a1 + k12 * a2)
+    b2 = u2 - rows[d, TARGET] - (k12 * a1 + k22 * a2)
+    x1 = (-k22 * b1 + k12 * b2) / det
+    x2 = (k12 * b1 - k11 * b2) / det
+    if not (x1 >= 0.0 and x2 >= 0.0):
+        x1 = -b1 / k11
+        x2 = 0.0
+        if not (x1 >= 0.0 and k12 * x1 + b2 >= 0.0):
+            x1 = 0.0
+            x2 = -b2 / k22
+            if not (x2 >= 0.0 and k12 * x2 + b1 >= 0.0):
+                x1 = 0.0
+                x2 = 0.0
+                if not (b1 >= 0.0 and b2 >= 0.0):
+                    return max(_normal(F, mean, rows, pairs, c), _normal(F, mean, rows, pairs, d))
+    rows[c, LAMBDA_N] = x1
+    rows[d, LAMBDA_N] = x2
+    _push(F, mean, pairs, rows, c, x1 - a1, 0.0)
+    _push(F, mean, pairs, rows, d, x2 - a2, 0.0)
+    return max(abs(x1 - a1), abs(x2 - a2))
+
+
+@njit(cache=True)
+def _solve(F, mean, rows, pairs, count, speed, down_x, down_y):
+    """Sequential impulses over the pairs: the warm start, then sweeps, each pair taking
+    friction at its points (within the cone of their normal impulses) then its normal
+    impulses (never pulling; a pair's two points together, ``_normal_pair``), until no
+    point's speed is off by more than ``SOLVE_TOLERANCE`` times ``speed`` (``_residual``), or
+    for at most ``ISLAND_ITERATIONS`` sweeps. Returns the number of sweeps."""
+    starts, sizes, blocks = _blocks(pairs, count)
+    # Sweep the pairs in order of height against the acceleration (bottom to top, then back):
+    # in a stack, a load then passes all the way down, and the reactions all the way up, in
+    # one pair of sweeps, where an arbitrary order needs many.
+    height = np.empty(blocks)
+    for b in range(blocks):
+        c = starts[b]
+        height[b] = -(rows[c, PX] * down_x + rows[c, PY] * down_y)
+    order = np.argsort(height)
+    starts = starts[order]
+    sizes = sizes[order]
+    for b in range(blocks):
+        c = starts[b]
+        _push(F, mean, pairs, rows, c, rows[c, LAMBDA_N], 0.0)
+        if sizes[b] == 2:
+            d = c + 1
+            _push(F, mean, pairs, rows, d, rows[d, LAMBDA_N], 0.0)
+            total = rows[c, LAMBDA_T] + rows[d, LAMBDA_T]
+            limit = rows[c, MU] * (rows[c, LAMBDA_N] + rows[d, LAMBDA_N])
+            total = min(max(total, -limit), limit)
+            rows[c, LAMBDA_T] = total
+            rows[d, LAMBDA_T] = 0.0
+            rax, ray, rbx, rby = _midpoint(rows, c)
+            _push_at(F, mean, pairs, c, -total * rows[c, NY], total * rows[c, NX], rax, ray, rbx, rby)
+        else:
+            limit = rows[c, MU] * rows[c, LAMBDA_N]
+            rows[c, LAMBDA_T] = min(max(rows[c, LAMBDA_T], -limit), limit)
+            _push(F, mean, pairs, rows, c, 0.0, rows[c, LAMBDA_T])
+    for sweep in range(ISLAND_ITERATIONS):
+        change = 0.0
+        for q in range(blocks):
+            # Sweeps alternate direction (symmetric Gauss-Seidel): a load passes down a
+            # stack, and a reaction up it, within one pair of sweeps.
+            b = q if sweep % 2 == 0 else blocks - 1 - q
+            c = starts[b]
+            if sizes[b] == 2:
+                change = max(change, _friction_pair(F, mean, rows, pairs, c))
+                change = max(change, _normal_pair(F, mean, rows, pairs, c))
+            else:
+                change = max(change, _friction(F, mean, rows, pairs, c))
+                change = max(change, _normal(F, mean, rows, pairs, c))
+        if change == 0.0 or _residual(mean, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
+            return sweep + 1
+    return ISLAND_ITERATIONS
+
+
+@njit(cache=True)
+def _blocks(pairs, count):
+    """The rows of each pair (one or two points, consecutive in the manifold): the first row
+    and the number of rows of every block, and how many blocks."""
+    starts = np.empty(count, dtype=np.int64)
+    sizes = np.empty(count, dtype=np.int64)
+    blocks = 0
+    c = 0
+    while c < count:
+        starts[blocks] = c
+        if c + 1 < count and pairs[c + 1, 2] == pairs[c, 2] and pairs[c + 1, 3] == pairs[c, 3]:
+            sizes[blocks] = 2
+        else:
+            sizes[blocks] = 1
+        c += sizes[blocks]
+        blocks += 1
+    return starts[:blocks], sizes[:blocks], blocks
+
+
+@njit(cache=True)
+def _residual(mean, rows, pairs, count, starts, sizes, blocks):
+    """How far the impulses are from solving the contacts, as a speed: the largest error of
+    a pushing point's normal speed, of a point closing faster than its target, or of a
+    sticking pair's (or point's) sliding speed."""
+    worst = 0.0
+    for c in range(count):
+        ux, uy = _relative(mean, pairs, rows, c)
+        gap = ux * rows[c, NX] + uy * rows[c, NY] - rows[c, TARGET]
+        if rows[c, LAMBDA_N] > 0.0:
+            worst = max(worst, abs(gap))
+        else:
+            worst = max(worst, -gap)
+    for b in range(blocks):
+        c = starts[b]
+        if rows[c, MU] <= 0.0:
+            continue
+        if sizes[b] == 2:
+            rax, ray, rbx, rby = _midpoint(rows, c)
+            ux, uy = _relative_at(mean, pairs, c, rax, ray, rbx, rby)
+            limit = rows[c, MU] * (rows[c, LAMBDA_N] + rows[c + 1, LAMBDA_N])
+        else:
+            ux, uy = _relative(mean, pairs, rows, c)
+            limit = rows[c, MU] * rows[c, LAMBDA_N]
+        if abs(rows[c, LAMBDA_T]) < limit:
+            worst = max(worst, abs(-ux * rows[c, NY] + uy * rows[c, NX]))
+    return worst
+
+
+@njit(cache=True)
+def _kinetic(F, i, vx, vy, w):
+    """Kinetic energy of body ``i`` moving at ``(vx, vy)`` and turning at ``w``."""
+    mass = 1.0 / F[i, L.INV_MASS]
+    inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
+    return 0.5 * (mass * (vx * vx + vy * vy) + inertia * w * w)
+
+
+@njit(cache=True)
+def _guard(F, members, mean, h):
+    """The energy guard: the part (0 to 1) of the solve's velocity changes to keep so that the
+    kinetic energy of the mean velocities does not rise (the step's own measure of motion: a
+    body held still on a face has none, while its velocity alternates between +-h |a| / 2);
+    below 1 only where rounding or the push-out of an overlap would add some."""
+    before = 0.0
+    grow = 0.0  # first-order change of the mean kinetic energy along the changes
+    square = 0.0  # its second-order part
+    for k in range(members.shape[0]):
+        i = members[k]
+        mass = 1.0 / F[i, L.INV_MASS]
+        inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
+        wx = F[i, L.VX] + 0.5 * h * F[i, L.AX]
+        wy = F[i, L.VY] + 0.5 * h * F[i, L.AY]
+        w = F[i, L.OMEGA]
+        dvx = mean[k, 0] - wx
+        dvy = mean[k, 1] - wy
+        dw = mean[k, 2] - w
+        before += _kinetic(F, i, wx, wy, w)
+        grow += mass * (wx * dvx + wy * dvy) + inertia * w * dw
+        square += 0.5 * (mass * (dvx * dvx + dvy * dvy) + inertia * dw * dw)
+    if grow + square > 1e-13 * before and square > 0.0:
+        return max(min(-grow / square, 1.0), 0.0) * (1.0 - 4e-16)
+    return 1.0
+
+
+@njit(cache=True)
+def _parts(pairs, count, m):
+    """Each body's part of the island: union-find over the contacts between its bodies
+    (the root's local index; -1 for a body with no contact at all)."""
+    parent = np.arange(m)
+    touched = np.zeros(m, dtype=np.bool_)
+    for c in range(count):
+        ka = pairs[c, 0]
+        kb = pairs[c, 1]
+        touched[ka] = True
+        if kb >= 0:
+            touched[kb] = True
+            ra = ka
+            while parent[ra] != ra:
+                ra = parent[ra]
+            rb = kb
+            while parent[rb] != rb:
+                rb = parent[rb]
+            if ra != rb:
+                parent[max(ra, rb)] = min(ra, rb)
+    labels = np.empty(m, dtype=np.int64)
+    for k in range(m):
+        r = k
+        while parent[r] != r:
+            r = parent[r]
+        labels[k] = r if touched[k] else -1
+    return labels
+
+
+@njit(cache=True)
+def _finish(S, members, local, mean, pairs, count, h):
+    """New velocities from the mean ones (scaled by the energy guard), the island's parts,
+    bodies with no contact leave it, every body touched. Returns the labels and the largest
+    mean speed over ``sqrt(|a| reach)``."""
+    F = S[0]
+    I = S[1]
+    scale = _guard(F, members, mean, h)
+    labels = _parts(pairs, count, members.shape[0])
+    fastest = 0.0
+    for k in range(members.shape[0]):
+        i = members[k]
+        local[i] = -1
+        F[i, L.VX] += scale * (mean[k, 0] - 0.5 * h * F[i, L.AX] - F[i, L.VX])
+        F[i, L.VY] += scale * (mean[k, 1] - 0.5 * h * F[i, L.AY] - F[i, L.VY])
+        F[i, L.OMEGA] += scale * (mean[k, 2] - F[i, L.OMEGA])
+        reach = F[i, L.REACH]
+        pull = math.hypot(F[i, L.AX], F[i, L.AY]) * reach
+        speed = math.hypot(F[i, L.VX] + 0.5 * h * F[i, L.AX], F[i, L.VY] + 0.5 * h * F[i, L.AY])
+        speed += abs(F[i, L.OMEGA]) * reach
+        if pull > 0.0:
+            fastest = max(fastest, speed / math.sqrt(pull))
+        elif speed > 0.0:
+            fastest = math.inf
+        if labels[k] < 0:
+            I[i, L.ISLAND] = -1
+        touch(S, i)
+    return labels, fastest
+
+
+@njit(cache=True)
+def step_island(S, members, local, h, t, warm_keys, warm_impulses):
+    """One step of the island made of ``members`` (body ids, all in one island) at time ``t``
+    with step length ``h``; ``local`` is a scratch map of body id to position in ``members``
+    (all -1, and left so). ``warm_keys`` (sorted) and ``warm_impulses`` are the last step's
+    contacts and their impulses.
+
+    Returns ``(keys, impulses, labels, fastest, sweeps)``: this step's contacts (sorted) and
+    impulses for the next, each member's part of the island (-1: it touches nothing and has
+    left the island), the largest mean speed over ``sqrt(|a| reach)`` (for sleep), and how
+    many sweeps the solve took.
+    """
+    F = S[0]
+    mean, margin = _start(S, members, local, h, t)
+    rows, pairs, count = _collect(S, members, local, margin, t)
+    keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
+    pull = 0.0
+    for k in range(members.shape[0]):
+        pull = max(pull, math.hypot(F[members[k], L.AX], F[members[k], L.AY]))
+    down_x = F[members[0], L.AX]
+    down_y = F[members[0], L.AY]
+    speed = h * pull
+    if not speed > 0.0:  # no acceleration: measure the solve against the bodies' own speeds
+        for k in range(members.shape[0]):
+            speed = max(speed, math.hypot(mean[k, 0], mean[k, 1]) + abs(mean[k, 2]) * F[members[k], L.REACH])
+    sweeps = _solve(F, mean, rows, pairs, count, speed, down_x, down_y)
+    labels, fastest = _finish(S, members, local, mean, pairs, count, h)
+    S[13][L.S_ISLAND_STEPS] += 1
+    order = np.argsort(keys)
+    impulses = np.empty((count, 2))
+    for c in range(count):
+        impulses[c, 0] = rows[order[c], LAMBDA_N]
+        impulses[c, 1] = rows[order[c], LAMBDA_T]
+    return keys[order], impulses, labels, fastest, sweeps

@@ -1,0 +1,218 @@
+"""Which bodies form which island, when islands step, and when they sleep (Python side).
+
+An island is a set of moving bodies in persistent contact with each other or with fixed
+bodies. It is made when a collision is persistent (``pge.core.engine.joins``: the bodies'
+acceleration would bring them back before they parted by the rest height), and grows when
+another body joins it the same way. While awake, it steps every ``h`` seconds on one of the
+World's internal timers (``pge.contact.island.step_island``); a body that touches nothing at a
+step leaves it, and an island whose contacts fall into separate groups splits. An island whose
+bodies all stay nearly still for ``SLEEP_TIME`` falls asleep: its bodies stop (no velocity, no
+acceleration), make no events and are not stepped, until a collision, a World change to one of
+its bodies or to a fixed body near it, or a new member wakes it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from pge.contact.island import step_island
+from pge.core import engine, grid
+from pge.core import layout as L
+from pge.core.tuning import SLEEP_SPEED, SLEEP_TIME
+
+_NO_KEYS = np.zeros(0, dtype=np.int64)
+_NO_IMPULSES = np.zeros((0, 2))
+
+
+class Island:
+    """One island: its bodies, its warm-start contacts, its timer and its sleep."""
+
+    __slots__ = ("members", "keys", "impulses", "timer", "asleep", "still_since")
+
+    def __init__(self, members: list[int]) -> None:
+        self.members = members
+        self.keys = _NO_KEYS
+        self.impulses = _NO_IMPULSES
+        self.timer: int | None = None
+        self.asleep = False
+        self.still_since: float | None = None
+
+
+class Islands:
+    """The islands of one World (contact model "islands")."""
+
+    def __init__(self, world, step: float) -> None:
+        self.world = world
+        self.step = step
+        self.islands: dict[int, Island] = {}
+        self._next = 0
+        self._local = np.full(64, -1, dtype=np.int64)
+        self.sweeps = 0  # solver sweeps over all steps (World.stats["island_sweeps"])
+
+    # ------------------------------------------------------------------ queries
+
+    def of(self, i: int) -> Island | None:
+        """The island body ``i`` belongs to, or None."""
+        k = int(self.world._state.I[i, L.ISLAND])
+        return self.islands.get(k) if k >= 0 else None
+
+    def asleep(self, i: int) -> bool:
+        """Whether body ``i`` is in a sleeping island."""
+        island = self.of(i)
+        return island is not None and island.asleep
+
+    # ------------------------------------------------------------------ changes
+
+    def collided(self, a: int, b: int, join: bool, t: float) -> None:
+        """A collision of ``a`` and ``b`` at ``t`` touched an island or is persistent
+        (``join``): wake the islands involved and, if ``join``, make them one."""
+        I = self.world._state.I
+        bodies = [x for x in (a, b) if not I[x, L.FIXED]]
+        for x in bodies:
+            island = self.of(x)
+            if island is not None and island.asleep:
+                self._wake(int(I[x, L.ISLAND]), t)
+        if join:
+            self._merge(bodies, t)
+
+    def _merge(self, bodies: list[int], t: float) -> None:
+        I = self.world._state.I
+        found = sorted({int(I[x, L.ISLAND]) for x in bodies if I[x, L.ISLAND] >= 0})
+        if found:
+            target = found[0]
+            keep = self.islands[target]
+        else:
+            target = self._next
+            self._next += 1
+            keep = self.islands[target] = Island([])
+        changed = []
+        for k in found[1:]:
+            other = self.islands.pop(k)
+            self._cancel(other)
+            keep.members.extend(other.members)
+            changed.extend(other.members)
+        for x in bodies:
+            if I[x, L.ISLAND] < 0:
+                keep.members.append(x)
+                changed.append(x)
+        for x in changed:
+            I[x, L.ISLAND] = target
+        keep.still_since = None
+        if changed:
+            # Pairs inside the island are no longer predicted: drop what was queued for them.
+            self.world._touch(changed)
+        self._schedule(target, t)
+
+    def leave(self, i: int) -> None:
+        """Take body ``i`` out of its island (removed, fixed, or moved by hand)."""
+        k = int(self.world._state.I[i, L.ISLAND])
+        if k < 0:
+            return
+        island = self.islands[k]
+        if island.asleep:
+            self._wake(k, self.world.time)
+        island.members.remove(i)
+        self.world._state.I[i, L.ISLAND] = -1
+        if not island.members:
+            self._cancel(island)
+            del self.islands[k]
+
+    def wake_near(self, i: int) -> None:
+        """Body ``i`` is about to change through the API: wake its island, or, for a fixed
+        body, the sleeping islands near it."""
+        state = self.world._state
+        now = self.world.time
+        k = int(state.I[i, L.ISLAND])
+        if k >= 0:
+            if self.islands[k].asleep:
+                self._wake(k, now)
+            return
+        if state.I[i, L.FIXED] and any(island.asleep for island in self.islands.values()):
+            count = grid.gather(state.S, i, self.world._extent(i))
+            for j in state.scratch[:count].tolist():
+                k = int(state.I[j, L.ISLAND])
+                if k >= 0 and self.islands[k].asleep:
+                    self._wake(k, now)
+
+    # ------------------------------------------------------------------ steps
+
+    def _schedule(self, k: int, t: float) -> None:
+        island = self.islands[k]
+        self._cancel(island)
+        island.timer = self.world._at_time_internal(t, lambda when, k=k: self._step(k, when))
+
+    def _cancel(self, island: Island) -> None:
+        if island.timer is not None:
+            self.world._timers.pop(island.timer, None)
+            island.timer = None
+
+    def _step(self, k: int, t: float) -> None:
+        island = self.islands.get(k)
+        if island is None:
+            return
+        island.timer = None
+        state = self.world._state
+        if self._local.shape[0] < state.n:
+            self._local = np.full(2 * state.n, -1, dtype=np.int64)
+        members = np.asarray(island.members, dtype=np.int64)
+        state.ensure_events(2 * members.shape[0] + 16)
+        island.keys, island.impulses, labels, fastest, sweeps = step_island(
+            state.S, members, self._local, self.step, t, island.keys, island.impulses
+        )
+        self.sweeps += sweeps
+        parts: dict[int, list[int]] = {}
+        for i, label in zip(members.tolist(), labels.tolist()):
+            if label >= 0:
+                parts.setdefault(label, []).append(i)
+        if not parts:
+            del self.islands[k]
+            return
+        groups = sorted(parts.values(), key=lambda g: (-len(g), g[0]))
+        island.members = groups[0]
+        for group in groups[1:]:
+            new = self._next
+            self._next += 1
+            self.islands[new] = Island(group)
+            for i in group:
+                state.I[i, L.ISLAND] = new
+            self._schedule(new, t + self.step)
+        if fastest < SLEEP_SPEED:
+            if island.still_since is None:
+                island.still_since = t
+            elif t - island.still_since >= SLEEP_TIME:
+                self._sleep(k)
+                return
+        else:
+            island.still_since = None
+        self._schedule(k, t + self.step)
+
+    # ------------------------------------------------------------------ sleep
+
+    def _sleep(self, k: int) -> None:
+        island = self.islands[k]
+        F = self.world._state.F
+        now = self.world.time
+        for i in island.members:
+            engine.advance(F, i, now)
+            F[i, L.VX] = F[i, L.VY] = F[i, L.OMEGA] = 0.0
+            F[i, L.AX] = F[i, L.AY] = 0.0
+        island.asleep = True
+        island.keys = _NO_KEYS
+        island.impulses = _NO_IMPULSES
+        self._cancel(island)
+        self.world._state.stats[L.S_SLEEPS] += 1
+        self.world._touch(island.members)
+
+    def _wake(self, k: int, t: float) -> None:
+        island = self.islands[k]
+        F = self.world._state.F
+        for i in island.members:
+            engine.advance(F, i, t)
+            F[i, L.AX] = F[i, L.FREE_AX]
+            F[i, L.AY] = F[i, L.FREE_AY]
+        island.asleep = False
+        island.still_since = None
+        self.world._state.stats[L.S_WAKES] += 1
+        self.world._touch(island.members)
+        self._schedule(k, t)
+

@@ -1,0 +1,168 @@
+"""Contact manifolds: where two bodies touch now, as at most two points.
+
+Every function takes the bodies' reference points and (for polygons) outline rows turned to
+the current angle, and appends rows ``(px, py, nx, ny, separation, key)`` to ``out``: the
+point midway between the two surfaces, the unit normal from the second body towards the first,
+the signed distance along it (negative: overlapping) and an integer naming the features that
+touch, so that a step can start from the impulses the same point took at the last step.
+Points further apart than ``margin`` are left out.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from pge.toi.circle_polygon import closest_feature
+
+_INF = math.inf
+#: columns of a manifold row
+PX, PY, NX, NY, SEPARATION, KEY = 0, 1, 2, 3, 4, 5
+NCOLUMNS = 6
+
+
+@njit(cache=True)
+def circle_circle_points(ax, ay, ra, bx, by, rb, margin, out, count):
+    """Append the contact point of circles a and b (normal from b to a); returns the new count."""
+    dx = ax - bx
+    dy = ay - by
+    d = math.hypot(dx, dy)
+    separation = d - ra - rb
+    if separation > margin:
+        return count
+    if d > 0.0:
+        nx = dx / d
+        ny = dy / d
+    else:
+        nx = 0.0
+        ny = 1.0
+    out[count, PX] = bx + nx * (rb + 0.5 * separation)
+    out[count, PY] = by + ny * (rb + 0.5 * separation)
+    out[count, NX] = nx
+    out[count, NY] = ny
+    out[count, SEPARATION] = separation
+    out[count, KEY] = 0.0
+    return count + 1
+
+
+@njit(cache=True)
+def circle_polygon_points(cx, cy, r, px, py, OL, start, n, flip, margin, out, count):
+    """Append the contact point of a circle and a polygon; the normal runs from the polygon
+    to the circle, or the other way round if ``flip`` (the polygon is the first body)."""
+    feature, nx, ny, gap = closest_feature(cx - px, cy - py, r, OL, start, n)
+    if gap > margin:
+        return count
+    out[count, PX] = cx - nx * (r + 0.5 * gap)
+    out[count, PY] = cy - ny * (r + 0.5 * gap)
+    if flip:
+        nx = -nx
+        ny = -ny
+    out[count, NX] = nx
+    out[count, NY] = ny
+    out[count, SEPARATION] = gap
+    out[count, KEY] = float(feature + 64)
+    return count + 1
+
+
+@njit(cache=True)
+def _deepest_face(OL, s1, n1, x1, y1, s2, n2, x2, y2):
+    """The face of polygon 1 along whose normal polygon 2 lies furthest out:
+    ``(separation, face)``."""
+    best = -_INF
+    face = 0
+    for k in range(n1):
+        nx = OL[s1 + k, 2]
+        ny = OL[s1 + k, 3]
+        vx = x1 + OL[s1 + k, 0]
+        vy = y1 + OL[s1 + k, 1]
+        least = _INF
+        for q in range(n2):
+            d = nx * (x2 + OL[s2 + q, 0] - vx) + ny * (y2 + OL[s2 + q, 1] - vy)
+            if d < least:
+                least = d
+        if least > best:
+            best = least
+            face = k
+    return best, face
+
+
+@njit(cache=True)
+def polygon_polygon_points(ax, ay, OL, sa, na, bx, by, sb, nb, margin, tolerance, out, count):
+    """Append up to two contact points of polygons a and b (normal from b to a).
+
+    The reference face is the face of either polygon with the largest separation (a's unless
+    b's is larger by more than ``tolerance``, so that the choice does not flicker between
+    steps); the points are the ends of the other polygon's most opposed face, clipped to the
+    reference face's width."""
+    sep_a, face_a = _deepest_face(OL, sa, na, ax, ay, sb, nb, bx, by)
+    if sep_a > margin:
+        return count
+    sep_b, face_b = _deepest_face(OL, sb, nb, bx, by, sa, na, ax, ay)
+    if sep_b > margin:
+        return count
+    if sep_b > sep_a + tolerance:
+        rs, rn, rx, ry, face = sb, nb, bx, by, face_b
+        js, jn, jx, jy = sa, na, ax, ay
+        sign = 1.0
+        owner = 0
+    else:
+        rs, rn, rx, ry, face = sa, na, ax, ay, face_a
+        js, jn, jx, jy = sb, nb, bx, by
+        sign = -1.0
+        owner = 1
+    nx = OL[rs + face, 2]
+    ny = OL[rs + face, 3]
+    v1x = rx + OL[rs + face, 0]
+    v1y = ry + OL[rs + face, 1]
+    tx = -ny
+    ty = nx
+    width = OL[rs + face, 4]
+    # The incident face: the other polygon's face most opposed to the reference normal.
+    incident = 0
+    least = _INF
+    for q in range(jn):
+        d = OL[js + q, 2] * nx + OL[js + q, 3] * ny
+        if d < least:
+            least = d
+            incident = q
+    nxt = incident + 1 if incident + 1 < jn else 0
+    w1x = jx + OL[js + incident, 0]
+    w1y = jy + OL[js + incident, 1]
+    w2x = jx + OL[js + nxt, 0]
+    w2y = jy + OL[js + nxt, 1]
+    # Clip the incident segment to the reference face's span [0, width] along its tangent.
+    u1 = (w1x - v1x) * tx + (w1y - v1y) * ty
+    u2 = (w2x - v1x) * tx + (w2y - v1y) * ty
+    for end in range(2):
+        lo = 0.0 if end == 0 else width
+        if end == 0:
+            outside1 = u1 < lo
+            outside2 = u2 < lo
+        else:
+            outside1 = u1 > lo
+            outside2 = u2 > lo
+        if outside1 and outside2:
+            return count
+        if outside1 or outside2:
+            f = (lo - u1) / (u2 - u1)
+            cx = w1x + f * (w2x - w1x)
+            cy = w1y + f * (w2y - w1y)
+            if outside1:
+                w1x, w1y, u1 = cx, cy, lo
+            else:
+                w2x, w2y, u2 = cx, cy, lo
+    for end in range(2):
+        wx = w1x if end == 0 else w2x
+        wy = w1y if end == 0 else w2y
+        separation = (wx - v1x) * nx + (wy - v1y) * ny
+        if separation > margin:
+            continue
+        out[count, PX] = wx - 0.5 * separation * nx
+        out[count, PY] = wy - 0.5 * separation * ny
+        out[count, NX] = sign * nx
+        out[count, NY] = sign * ny
+        out[count, SEPARATION] = separation
+        out[count, KEY] = float(((owner * 64 + face) * 64 + incident) * 2 + end)
+        count += 1
+    return count

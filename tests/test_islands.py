@@ -1,0 +1,348 @@
+"""The contact model "islands" (World(contact="islands"), pge.contact, docs/contact.md).
+
+Analytic cases (a body at rest on a face, sticking and sliding on a slope, rolling), a
+high-precision reference for tipping over a ledge's edge, stacks that stand and sleep,
+waking, bounded cost, determinism, and exactness of everything that is not an island.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+from pge import World
+from pge.core import layout as L
+from pge.core.tuning import ISLAND_STEP
+
+G = 9.81
+
+
+def _floor_world(**options) -> World:
+    world = World(gravity=(0.0, -G), contact="islands", bounds=(-2.0, -1.0, 2.0, 3.0), **options)
+    world.add_box(-2.0, -1.0, 4.0, 1.0, fixed=True)  # top face at y = 0
+    return world
+
+
+def _energy(world: World) -> float:
+    """Kinetic plus potential energy of the moving bodies (gravity along -y)."""
+    F = world._state.F
+    total = 0.0
+    for body in world.bodies:
+        if body.is_fixed:
+            continue
+        i = body.id
+        (x, y), (vx, vy) = body.position, body.velocity
+        mass = 1.0 / F[i, L.INV_MASS]
+        inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0 else 0.0
+        total += 0.5 * mass * (vx * vx + vy * vy) + 0.5 * inertia * body.angular_velocity**2 + mass * G * y
+    return total
+
+
+def test_a_dropped_ball_and_box_come_to_rest_exactly_and_sleep():
+    world = _floor_world()
+    box = world.add_box(-0.6, 0.5, 0.2, 0.2, mass=1.0, friction=0.5, elasticity=0.5)
+    ball = world.add_circle((0.5, 0.3), 0.1, mass=1.0, friction=0.5, elasticity=0.5)
+    world.run_until(3.0)
+    assert box.position[1] == pytest.approx(0.1, abs=1e-12)
+    assert ball.position[1] == pytest.approx(0.1, abs=1e-12)
+    assert box.velocity == (0.0, 0.0) and ball.velocity == (0.0, 0.0)
+    assert abs(box.angle) < 1e-12
+    stats = world.stats
+    assert stats["sleeps"] >= 1 and stats["joins"] >= 2
+    steps = stats["island_steps"]
+    world.run_until(6.0)
+    assert world.stats["island_steps"] == steps  # asleep: no steps, no events
+    assert world.stats["events"] == stats["events"]
+
+
+def _pyramid(rows: int = 5) -> tuple[World, list]:
+    world = _floor_world()
+    boxes = []
+    for r in range(rows):
+        for c in range(rows - r):
+            x = -rows * 0.1 + r * 0.1 + c * 0.2
+            boxes.append(world.add_box(x + 0.001, r * 0.2005, 0.198, 0.2, mass=1.0, friction=0.6, elasticity=0.1))
+    return world, boxes
+
+
+def test_a_pyramid_of_15_boxes_stands_and_then_makes_no_events():
+    world, boxes = _pyramid(5)
+    start = [b.position for b in boxes]
+    world.run_until(2.0)
+    for body, (x, y) in zip(boxes, start):
+        assert abs(body.position[0] - x) < 1e-3
+        assert abs(body.angle) < 1e-3
+        assert body.position[1] <= y + 1e-9  # it fell onto what is under it, never up
+    assert world.stats["sleeps"] >= 1
+    before = dict(world.stats)
+    world.run_until(5.0)
+    assert world.stats["events"] == before["events"]
+    assert world.stats["island_steps"] == before["island_steps"]
+    assert not world.overlaps(1e-9)
+
+
+def test_a_ball_falling_on_a_sleeping_pile_wakes_it_and_rests_on_it():
+    world, boxes = _pyramid(3)
+    world.run_until(2.0)
+    assert world.stats["sleeps"] >= 1
+    top = max(boxes, key=lambda b: b.position[1])
+    ball = world.add_circle((top.position[0], top.position[1] + 0.4), 0.05, mass=0.5, elasticity=0.3, friction=0.5)
+    world.run_until(2.5)
+    assert world.stats["wakes"] >= 1
+    world.run_until(6.0)
+    assert ball.position[1] == pytest.approx(top.position[1] + 0.1 + 0.05, abs=1e-6)
+    assert abs(ball.position[0] - top.position[0]) < 0.1
+
+
+def _slope_world(angle: float, **options) -> tuple[World, float, float]:
+    """A fixed wedge whose upper face rises at ``angle`` from the origin; returns the world
+    and the face's unit direction (cos, sin)."""
+    world = World(gravity=(0.0, -G), contact="islands", bounds=(-3.0, -3.0, 3.0, 3.0), **options)
+    c, s = math.cos(angle), math.sin(angle)
+    length = 2.5
+    world.add_polygon([(-length * c, -length * s), (length * c, -length * s), (length * c, length * s)], fixed=True)
+    return world, c, s
+
+
+def _box_on_slope(world, c, s, at, size, **options):
+    """A square of side ``size`` lying on the slope face, its base centre at ``at`` along it."""
+    n = (-s, c)
+    base = (at * c, at * s)
+    half = size / 2
+    corners = []
+    for u, v in ((-half, 0.0), (half, 0.0), (half, size), (-half, size)):
+        corners.append((base[0] + u * c + v * n[0], base[1] + u * s + v * n[1]))
+    return world.add_polygon(corners, **options)
+
+
+@pytest.mark.parametrize("mu", [0.5, 0.9])
+def test_a_box_on_a_slope_sticks_below_the_friction_angle(mu):
+    angle = math.radians(20.0)  # tan 20 deg = 0.364 < mu
+    world, c, s = _slope_world(angle)
+    box = _box_on_slope(world, c, s, 0.0, 0.2, mass=1.0, friction=mu, elasticity=0.0)
+    start = box.position
+    world.run_until(1.5)
+    moved = math.dist(box.position, start)
+    assert moved < 1e-4
+    assert abs(box.angle) < 1e-4
+
+
+@pytest.mark.parametrize("mu", [0.1, 0.2])
+def test_a_box_slides_down_a_slope_at_g_sin_minus_mu_cos(mu):
+    angle = math.radians(30.0)
+    world, c, s = _slope_world(angle)
+    box = _box_on_slope(world, c, s, 0.8, 0.2, mass=1.0, friction=mu, elasticity=0.0)
+    world.run_until(0.3)
+    p1, t1 = box.position, world.time
+    world.run_until(0.6)
+    p2, t2 = box.position, world.time
+    v1 = box.velocity
+    world.run_until(0.6 + 0.1)
+    v2 = box.velocity
+    along = ((v2[0] - v1[0]) * -c + (v2[1] - v1[1]) * -s) / 0.1
+    expected = G * (math.sin(angle) - mu * math.cos(angle))
+    assert along == pytest.approx(expected, rel=0.02)
+    assert abs(box.angle) < 1e-6  # a sliding box does not tip
+
+
+def test_a_ball_rolls_down_a_slope_at_two_thirds_g_sin():
+    angle = math.radians(25.0)
+    world, c, s = _slope_world(angle)
+    r = 0.1
+    n = (-s, c)
+    at = 1.0
+    ball = world.add_circle((at * c + r * n[0], at * s + r * n[1]), r, mass=1.0, friction=0.8, elasticity=0.0)
+    world.run_until(0.2)
+    v1 = ball.velocity
+    world.run_until(0.7)
+    v2 = ball.velocity
+    along = ((v2[0] - v1[0]) * -c + (v2[1] - v1[1]) * -s) / 0.5
+    assert along == pytest.approx(2.0 / 3.0 * G * math.sin(angle), rel=0.01)
+    speed = math.hypot(*v2)
+    assert ball.angular_velocity * r == pytest.approx(speed, rel=0.01)  # rolling, not skidding
+
+
+def _tipping_reference(d: float, width: float, height: float, times):
+    """Angle against time of a box pivoting without slip about the ledge's edge, with its
+    centroid ``d`` beyond the edge, from rest: ``I_p theta'' = m g (d cos + h/2 sin)``,
+    integrated by mpmath's Taylor-series ODE solver at 30 digits. Also the friction the
+    pivot needs, as a fraction of the normal force, at each time (the model holds while it
+    is below the friction coefficient and the normal force is positive)."""
+    mpmath.mp.dps = 30
+    inertia = (width**2 + height**2) / 12 + d**2 + (height / 2) ** 2  # per unit mass, about the edge
+    half = height / 2
+
+    def torque(theta):
+        return G * (d * mpmath.cos(theta) + half * mpmath.sin(theta)) / inertia
+
+    solution = mpmath.odefun(lambda t, y: [y[1], torque(y[0])], 0, [mpmath.mpf(0), mpmath.mpf(0)])
+    angles = []
+    ratios = []
+    for t in times:
+        theta, omega = (float(v) for v in solution(t))
+        alpha = float(torque(theta))
+        # the centroid relative to the edge, r(theta), and the acceleration of the centroid
+        rx = d * math.cos(theta) + half * math.sin(theta)
+        ry = -d * math.sin(theta) + half * math.cos(theta)
+        ax = alpha * ry - omega * omega * rx
+        ay = -alpha * rx - omega * omega * ry
+        normal = G + ay
+        angles.append(theta)
+        ratios.append(abs(ax) / normal if normal > 0 else math.inf)
+    return angles, ratios
+
+
+def test_a_box_past_a_ledge_tips_over_its_edge_as_the_pivot_ode_says():
+    world = World(gravity=(0.0, -G), contact="islands", bounds=(-2.0, -2.0, 2.0, 2.0))
+    world.add_box(-2.0, -1.0, 2.0, 1.0, fixed=True)  # the ledge: top at y = 0, edge at x = 0
+    world.add_box(-2.0, -2.0, 4.0, 0.2, fixed=True)  # the floor below: top at y = -1.8
+    d = 0.02
+    box = world.add_box(d - 0.1, 0.0, 0.2, 0.2, mass=1.0, friction=1.0, elasticity=0.0)
+    times = [0.05, 0.1, 0.15, 0.2, 0.25, 0.3]
+    reference, ratios = _tipping_reference(d, 0.2, 0.2, times)
+    assert max(ratios) < 1.0  # the pivot model holds over these times (it slips at 0.31 s)
+    for t, theta in zip(times, reference):
+        world.run_until(t)
+        assert -box.angle == pytest.approx(theta, abs=0.02 * theta + 2e-3), (t, theta, -box.angle)
+    world.run_until(1.5)
+    assert box.position[1] < -0.5  # it fell off the ledge
+
+
+def test_bodies_without_acceleration_never_form_islands_and_flight_is_unchanged():
+    def run(contact):
+        world = World(contact=contact)
+        rng = np.random.default_rng(3)
+        for k in range(20):
+            world.add_circle((0.1 + 0.2 * (k % 5), 0.1 + 0.2 * (k // 5)), 0.04, mass=1.0, elasticity=0.9,
+                             velocity=tuple(rng.uniform(-1, 1, 2)))
+        for x0, y0, x1, y1 in ((-0.1, -0.1, 1.1, 0.0), (-0.1, 1.0, 1.1, 1.1), (-0.1, 0.0, 0.0, 1.0), (1.0, 0.0, 1.1, 1.0)):
+            world.add_box(x0, y0, x1 - x0, y1 - y0, fixed=True)
+        world.run_until(5.0)
+        return world.positions(), world.stats
+
+    rules, _ = run("rules")
+    islands, stats = run("islands")
+    assert stats["joins"] == 0 and stats["island_steps"] == 0
+    assert np.array_equal(rules, islands)
+
+
+def test_island_runs_are_deterministic():
+    def run():
+        world, boxes = _pyramid(4)
+        world.add_circle((0.0, 1.5), 0.08, mass=1.0, elasticity=0.4, friction=0.3)
+        world.run_until(2.5)
+        return world.positions(), dict(world.stats)
+
+    first, second = run(), run()
+    assert np.array_equal(first[0], second[0])
+    assert first[1] == second[1]
+
+
+def test_an_awake_island_steps_at_its_rate_and_no_faster():
+    world, boxes = _pyramid(3)
+    world.run_until(1.0)
+    steps = world.stats["island_steps"]
+    # at most one island per body, each stepping every ISLAND_STEP
+    assert 0 < steps <= len(boxes) * (1.0 / ISLAND_STEP + 1)
+
+
+def test_energy_does_not_rise_over_island_steps_beyond_the_step_hop():
+    """Kinetic plus potential energy sampled after every step: after the first steps of
+    each join (where a body slower than the step's hop of h|g|/2 takes it up, at most
+    m (h g)^2 / 8), it never rises."""
+    import pge.contact.islands as islands_module
+
+    world, boxes = _pyramid(3)
+    ball = world.add_circle((0.05, 1.2), 0.07, mass=1.0, elasticity=0.5, friction=0.4)
+    energies = []
+    original = islands_module.step_island
+
+    def spy(*args):
+        result = original(*args)
+        energies.append(_energy(world))
+        return result
+
+    islands_module.step_island = spy
+    try:
+        world.run_until(3.0)
+    finally:
+        islands_module.step_island = original
+    hop = sum(1.0 for _ in boxes + [ball]) * (ISLAND_STEP * G) ** 2 / 8
+    start = energies[0]
+    assert max(energies) <= start + hop + 1e-9
+    assert energies[-1] < start
+
+
+def test_contact_option_is_checked():
+    with pytest.raises(ValueError, match="contact must be"):
+        World(contact="magic")
+    with pytest.raises(ValueError, match="contact_step"):
+        World(contact="islands", contact_step=0.0)
+
+
+def _leaning_plank(mu: float, angle: float):
+    """A plank of length 1 leaning at ``angle`` from the floor against a frictionless wall on
+    the left; friction ``mu`` at the floor (the friction rule is "min")."""
+    world = World(gravity=(0.0, -G), contact="islands", bounds=(-1.0, -1.0, 2.0, 2.0), friction_rule="min")
+    world.add_box(-1.0, -1.0, 3.0, 1.0, fixed=True, friction=10.0)  # floor: top at y = 0
+    world.add_box(-1.0, 0.0, 1.0, 2.0, fixed=True, friction=0.0)  # wall: face at x = 0
+    length, thickness = 1.0, 0.02
+    c, s = math.cos(angle), math.sin(angle)
+    corners = [(0.0, 0.0), (length, 0.0), (length, thickness), (0.0, thickness)]
+    # turn by pi - angle (top end to the left), then rest the lowest corner on the floor and
+    # the leftmost against the wall
+    turned = [(-c * x - s * y, s * x - c * y) for x, y in corners]
+    x0 = min(x for x, _ in turned)
+    y0 = min(y for _, y in turned)
+    plank = world.add_polygon([(x - x0, y - y0) for x, y in turned], mass=1.0, friction=mu, elasticity=0.0)
+    return world, plank
+
+
+@pytest.mark.parametrize("factor, stands", [(1.25, True), (0.8, False)])
+def test_a_leaning_plank_stands_exactly_when_friction_exceeds_the_threshold(factor, stands):
+    angle = math.radians(60.0)
+    threshold = 1.0 / (2.0 * math.tan(angle))  # uniform plank, frictionless wall
+    world, plank = _leaning_plank(factor * threshold, angle)
+    start = plank.position
+    world.run_until(1.0)
+    moved = math.dist(plank.position, start)
+    if stands:
+        assert moved < 1e-3
+    else:
+        assert moved > 0.05
+
+
+def test_dominoes_topple_in_order():
+    world = _floor_world()
+    count = 6
+    dominoes = [world.add_box(-0.5 + 0.1 * k, 0.0, 0.02, 0.2, mass=0.1, friction=0.5, elasticity=0.0)
+                for k in range(count)]
+    dominoes[0].angular_velocity = -8.0  # a flick towards the others (a quarter survives the first impact)
+    fell = [None] * count
+    for step in range(1, 401):
+        world.run_until(step * 0.005)
+        for k, body in enumerate(dominoes):
+            if fell[k] is None and abs(body.angle) > 0.3:
+                fell[k] = world.time
+    assert all(t is not None for t in fell), fell
+    assert fell == sorted(fell) and len(set(fell)) == count, fell
+
+
+def test_a_ball_rolls_on_a_plank_lying_on_ice():
+    """A disc thrown along a free plank on a frictionless floor: friction makes it roll on
+    the moving plank; momentum along the floor is kept; the end velocities are those of
+    the friction impulse J = v0 / (3/m + 1/M) (I = m r^2 / 2)."""
+    world = World(gravity=(0.0, -G), contact="islands", bounds=(-3.0, -1.0, 3.0, 2.0))
+    world.add_box(-3.0, -1.0, 6.0, 1.0, fixed=True, friction=0.0)  # ice
+    M, m, r, v0 = 2.0, 1.0, 0.1, 1.0
+    plank = world.add_box(-1.0, 0.0, 2.0, 0.05, mass=M, friction=0.0, elasticity=0.0)
+    ball = world.add_circle((-0.8, 0.05 + r), r, mass=m, friction=0.6, elasticity=0.0, velocity=(v0, 0.0))
+    world.run_until(0.6)
+    J = v0 / (3.0 / m + 1.0 / M)
+    assert ball.velocity[0] == pytest.approx(v0 - J / m, rel=0.01)
+    assert plank.velocity[0] == pytest.approx(J / M, rel=0.01)
+    assert -ball.angular_velocity * r == pytest.approx(2.0 * J / m, rel=0.01)
+    assert m * ball.velocity[0] + M * plank.velocity[0] == pytest.approx(m * v0, rel=1e-9)
