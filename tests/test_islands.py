@@ -58,6 +58,24 @@ def test_a_dropped_ball_and_box_come_to_rest_exactly_and_sleep():
     assert world.stats["events"] == stats["events"]
 
 
+def test_a_stack_of_10_boxes_dropped_with_gaps_and_offsets_settles_and_then_makes_no_events():
+    world = _floor_world()
+    rng = np.random.default_rng(0)
+    boxes = [world.add_box(-0.1 + rng.uniform(-0.005, 0.005), k * 0.21 + 0.01, 0.2, 0.2, mass=1.0, friction=0.5,
+                           elasticity=0.3) for k in range(10)]
+    offsets = [b.position[0] for b in boxes]
+    world.run_until(2.0)
+    assert all(b.asleep for b in boxes)
+    for k, body in enumerate(boxes):
+        assert body.position[1] == pytest.approx(0.1 + 0.2 * k, abs=1e-6)
+        assert abs(body.angle) < 1e-6
+        assert abs(body.position[0] - offsets[k]) < 2e-3  # no skating (the rules model: up to 0.036)
+    before = dict(world.stats)
+    world.run_until(5.0)
+    assert world.stats["events"] == before["events"]
+    assert world.stats["island_steps"] == before["island_steps"]
+
+
 def _pyramid(rows: int = 5) -> tuple[World, list]:
     world = _floor_world()
     boxes = []

@@ -41,8 +41,10 @@ from pge.core.contact import combine
 from pge.core.engine import touch
 from pge.core.grid import gather
 from pge.core.motion import advance, orient
+from pge.numerics.linalg import solve_spd
 from pge.core.tuning import (
     CONTACT_MARGIN,
+    POLISH_LIMIT,
     FACE_HYSTERESIS,
     ISLAND_ITERATIONS,
     PUSH_RATE,
@@ -444,7 +446,151 @@ def _solve(F, mean, rows, pairs, count, speed, down_x, down_y):
                 change = max(change, _normal(F, mean, rows, pairs, c))
         if change == 0.0 or _residual(mean, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
             return sweep + 1
+        if sweep % 16 == 15 and _polish(F, mean, rows, pairs, count, starts, sizes, blocks, speed):
+            return sweep + 1
     return ISLAND_ITERATIONS
+
+
+@njit(cache=True, inline="always")
+def _arms(rows, c, size):
+    """Lever arms of a block's friction: its point, or the midpoint of its two."""
+    if size == 2:
+        return _midpoint(rows, c)
+    return rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY]
+
+
+@njit(cache=True)
+def _polish(F, mean, rows, pairs, count, starts, sizes, blocks, speed):
+    """Finish the solve exactly where the sweeps have found which points push and that every
+    pair sticks: solve the equalities of that active set (pushing points reach their target
+    normal speed, sticking pairs stop sliding) as one dense symmetric system ``W d = r``
+    (``W = J M^-1 J^T``), and keep the result only if it is a solution (no pulling impulse,
+    friction within its cone, no other point closing too fast). The sweeps converge slowly on
+    tall stacks and piles (their rate falls with the square of the height); this step does
+    not. Returns whether it was kept (the impulses and mean velocities then hold it)."""
+    size_limit = POLISH_LIMIT
+    kind = np.empty(size_limit, dtype=np.int64)  # 0: normal at row, 1: friction of block
+    index = np.empty(size_limit, dtype=np.int64)
+    n = 0
+    for b in range(blocks):
+        c = starts[b]
+        total = 0.0
+        for p in range(c, c + sizes[b]):
+            if rows[p, LAMBDA_N] > 0.0:
+                if n == size_limit:
+                    return False
+                kind[n] = 0
+                index[n] = p
+                n += 1
+                total += rows[p, LAMBDA_N]
+        if rows[c, MU] > 0.0 and total > 0.0:
+            if not abs(rows[c, LAMBDA_T]) < rows[c, MU] * total * (1.0 - 1e-9):
+                return False  # a sliding pair: its friction depends on the normal impulses
+            if n == size_limit:
+                return False
+            kind[n] = 1
+            index[n] = b
+            n += 1
+    if n == 0:
+        return False
+    # Rows of J for the two bodies: (x, y, spin) coefficients, and their local indices.
+    ja = np.zeros((n, 3))
+    jb = np.zeros((n, 3))
+    body_a = np.empty(n, dtype=np.int64)
+    body_b = np.empty(n, dtype=np.int64)
+    r = np.empty(n)
+    for k in range(n):
+        if kind[k] == 0:
+            c = index[k]
+            dx = rows[c, NX]
+            dy = rows[c, NY]
+            rax, ray, rbx, rby = rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY]
+            target = rows[c, TARGET]
+        else:
+            c = starts[index[k]]
+            dx = -rows[c, NY]
+            dy = rows[c, NX]
+            rax, ray, rbx, rby = _arms(rows, c, sizes[index[k]])
+            target = 0.0
+        ja[k, 0] = dx
+        ja[k, 1] = dy
+        ja[k, 2] = rax * dy - ray * dx
+        jb[k, 0] = -dx
+        jb[k, 1] = -dy
+        jb[k, 2] = -(rbx * dy - rby * dx)
+        body_a[k] = pairs[c, 0]
+        body_b[k] = pairs[c, 1]
+        ux, uy = _relative_at(mean, pairs, c, rax, ray, rbx, rby)
+        r[k] = target - (ux * dx + uy * dy)
+    inverse = np.empty((mean.shape[0], 3))
+    for k in range(n):
+        for side in range(2):
+            x = body_a[k] if side == 0 else body_b[k]
+            i = pairs[index[k] if kind[k] == 0 else starts[index[k]], 2 + side]
+            if x >= 0:
+                inverse[x, 0] = F[i, L.INV_MASS]
+                inverse[x, 1] = F[i, L.INV_MASS]
+                inverse[x, 2] = F[i, L.INV_INERTIA]
+    W = np.zeros((n, n))
+    largest = 0.0
+    for k in range(n):
+        for q in range(k + 1):
+            total = 0.0
+            for sk in range(2):
+                xk = body_a[k] if sk == 0 else body_b[k]
+                if xk < 0:
+                    continue
+                for sq in range(2):
+                    xq = body_a[q] if sq == 0 else body_b[q]
+                    if xq != xk:
+                        continue
+                    for d in range(3):
+                        left = ja[k, d] if sk == 0 else jb[k, d]
+                        right = ja[q, d] if sq == 0 else jb[q, d]
+                        total += left * inverse[xk, d] * right
+            W[k, q] = total
+            W[q, k] = total
+        largest = max(largest, W[k, k])
+    step = solve_spd(W, r, 1e-12 * largest)
+    # Candidate impulses, and their check.
+    new_n = np.empty(count)
+    for c in range(count):
+        new_n[c] = rows[c, LAMBDA_N]
+    for k in range(n):
+        if kind[k] == 0:
+            new_n[index[k]] += step[k]
+            if new_n[index[k]] < 0.0:
+                return False
+    for k in range(n):
+        if kind[k] == 1:
+            c = starts[index[k]]
+            total = new_n[c] + (new_n[c + 1] if sizes[index[k]] == 2 else 0.0)
+            if abs(rows[c, LAMBDA_T] + step[k]) > rows[c, MU] * total:
+                return False
+    moved = mean.copy()
+    for k in range(n):
+        for side in range(2):
+            x = body_a[k] if side == 0 else body_b[k]
+            if x < 0:
+                continue
+            for d in range(3):
+                coefficient = ja[k, d] if side == 0 else jb[k, d]
+                moved[x, d] += inverse[x, d] * coefficient * step[k]
+    for c in range(count):
+        if new_n[c] == 0.0:
+            ux, uy = _relative(moved, pairs, rows, c)
+            if ux * rows[c, NX] + uy * rows[c, NY] < rows[c, TARGET] - SOLVE_TOLERANCE * speed:
+                return False
+    for k in range(n):
+        if kind[k] == 1:
+            c = starts[index[k]]
+            rows[c, LAMBDA_T] += step[k]
+            if sizes[index[k]] == 2:
+                rows[c + 1, LAMBDA_T] = 0.0
+    for c in range(count):
+        rows[c, LAMBDA_N] = new_n[c]
+    mean[:, :] = moved
+    return True
 
 
 @njit(cache=True)

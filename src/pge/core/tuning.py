@@ -32,6 +32,9 @@ ISLAND_ITERATIONS = 400
 #: the solve stops early once no contact's speed is off by more than this times h |a| (the
 #: speed gravity gives in one step)
 SOLVE_TOLERANCE = 1e-6
+#: the solve finishes exactly (one dense solve of the contacts that push and stick) when
+#: they are at most this many; every 16 sweeps it tries
+POLISH_LIMIT = 160
 #: a pair is in an island's manifold while its gap is below its step travel plus this times
 #: the smaller bounding radius (so that resting contacts stay listed)
 CONTACT_MARGIN = 0.01
