@@ -552,6 +552,9 @@ def _polish(F, mean, rows, pairs, count, starts, sizes, blocks, speed):
             W[q, k] = total
         largest = max(largest, W[k, k])
     step = solve_spd(W, r, 1e-12 * largest)
+    for k in range(n):
+        if not math.isfinite(step[k]):
+            return False  # W singular to rounding (redundant contacts): keep the sweeps' answer
     # Candidate impulses, and their check.
     new_n = np.empty(count)
     for c in range(count):
@@ -559,13 +562,13 @@ def _polish(F, mean, rows, pairs, count, starts, sizes, blocks, speed):
     for k in range(n):
         if kind[k] == 0:
             new_n[index[k]] += step[k]
-            if new_n[index[k]] < 0.0:
+            if not new_n[index[k]] >= 0.0:
                 return False
     for k in range(n):
         if kind[k] == 1:
             c = starts[index[k]]
             total = new_n[c] + (new_n[c + 1] if sizes[index[k]] == 2 else 0.0)
-            if abs(rows[c, LAMBDA_T] + step[k]) > rows[c, MU] * total:
+            if not abs(rows[c, LAMBDA_T] + step[k]) <= rows[c, MU] * total:
                 return False
     moved = mean.copy()
     for k in range(n):
@@ -579,7 +582,7 @@ def _polish(F, mean, rows, pairs, count, starts, sizes, blocks, speed):
     for c in range(count):
         if new_n[c] == 0.0:
             ux, uy = _relative(moved, pairs, rows, c)
-            if ux * rows[c, NX] + uy * rows[c, NY] < rows[c, TARGET] - SOLVE_TOLERANCE * speed:
+            if not ux * rows[c, NX] + uy * rows[c, NY] >= rows[c, TARGET] - SOLVE_TOLERANCE * speed:
                 return False
     for k in range(n):
         if kind[k] == 1:
