@@ -31,6 +31,7 @@ each engine builds the gas and runs it briefly in a fresh child process; ``rss_B
     .venv/bin/python benchmarks/vs_pymunk.py                # N = 1e3 1e4 1e5, 10 s, best of 1
     .venv/bin/python benchmarks/vs_pymunk.py --sizes 1000 --duration 1 --memory-sizes  # quick look
     .venv/bin/python benchmarks/vs_pymunk.py --repeat 3 --memory-sizes 100000 1000000
+    .venv/bin/python benchmarks/vs_pymunk.py --repeat 3 --memory-from results/vs-pymunk-old.csv  # timings only
 
 Prints a table, writes ``benchmarks/results/vs-pymunk-<hostname>.csv`` (rewritten after every N)
 and the log-log plot ``benchmarks/results/vs-pymunk-<hostname>.png``. It only measures: it never
@@ -85,6 +86,11 @@ def parse_args(argv=None) -> argparse.Namespace:
         help="N at which to measure memory per body (fresh child processes); none: skip",
     )
     parser.add_argument("--memory-duration", type=float, default=0.05, help="simulated seconds of the memory runs")
+    parser.add_argument(
+        "--memory-from", type=Path, default=None,
+        help="earlier vs-pymunk CSV: copy its memory columns instead of measuring memory (memory does not "
+        "depend on the machine's load; the runs at 1e6 take minutes)",
+    )
     parser.add_argument("--out", type=Path, default=None, help="CSV (default benchmarks/results/vs-pymunk-<host>.csv)")
     parser.add_argument("--plot", type=Path, default=None, help="PNG (default: the CSV's path with .png)")
     parser.add_argument("--memory-child", nargs=3, metavar=("ENGINE", "N", "SEED"), help=argparse.SUPPRESS)
@@ -271,12 +277,14 @@ def pymunk_once(gas, duration: float, dt: float) -> dict:
     new_pairs = 0
     step = space.step
     clock = time.perf_counter
+    cpu_clock = time.process_time
     gc.collect()
-    cpu = time.process_time()
-    wall = 0.0
+    wall = cpu = 0.0
     for _ in range(steps):
         start = clock()
+        start_cpu = cpu_clock()
         step(dt)
+        cpu += cpu_clock() - start_cpu
         wall += clock() - start
         # Untimed: the arbiters cached after this step (touching now or within the
         # persistence window), their contact distances (< 0: overlap) and first contacts.
@@ -294,7 +302,6 @@ def pymunk_once(gas, duration: float, dt: float) -> dict:
                 deepest_wall = max(deepest_wall, float(depth[on_wall].max()))
         else:
             last_pair = 0.0
-    cpu = time.process_time() - cpu
     return {
         "setup_s": setup,
         "wall_s": wall,
@@ -337,11 +344,14 @@ def run_ref(gas, duration: float, repeat: int) -> dict:
     runs = []
     for _ in range(repeat):
         gc.collect()
+        cpu = time.process_time()
         runs.append(run_reference(gas, duration))
+        runs[-1]["cpu_s"] = time.process_time() - cpu  # includes converting the scene: negligible
     best = min(runs, key=lambda run: run["wall_time_s"])
     wall = best["wall_time_s"]
     return {
         "ref_wall_s": wall,
+        "ref_cpu_s": best["cpu_s"],
         "ref_wall_s_all": ";".join(f"{run['wall_time_s']:.3f}" for run in runs),
         "ref_events": best["events"],
         "ref_us_per_event": 1e6 * wall / best["events"] if best["events"] else math.nan,
@@ -418,24 +428,31 @@ CSV_COLUMNS = [
     "pymunk_dt", "pymunk_setup_s", "pymunk_wall_s", "pymunk_wall_s_all", "pymunk_cpu_s", "pymunk_steps",
     "pymunk_ms_per_step", "pymunk_pair_contacts", "pymunk_max_overlap_rel_radius",
     "pymunk_max_wall_overlap_rel_radius", "pymunk_end_overlap_rel_radius", "pymunk_ke_drift",
-    "ref_status", "ref_wall_s", "ref_wall_s_all", "ref_events", "ref_us_per_event", "ref_pair_collisions",
+    "ref_status", "ref_wall_s", "ref_wall_s_all", "ref_cpu_s", "ref_events", "ref_us_per_event", "ref_pair_collisions",
     "ref_pair_collisions_per_s", "ref_ke_drift",
-    "pymunk_over_pge", "ref_over_pge",
+    "pymunk_over_pge", "ref_over_pge", "pymunk_over_pge_cpu", "ref_over_pge_cpu",
     "memory_duration_s", "pge_state_B_per_body", "pge_rss_B_per_body", "pymunk_rss_B_per_body",
-    "ref_rss_B_per_body", "memory_loadavg_1min",
+    "ref_rss_B_per_body", "memory_loadavg_1min", "memory_source",
     "hostname", "cpu_model", "cpu_count", "python", "numpy", "numba", "pymunk", "chipmunk",
     "pge_path", "pge_commit", "timestamp_utc",
+]  # fmt: skip
+
+MEMORY_COLUMNS = [
+    "memory_duration_s", "pge_state_B_per_body", "pge_rss_B_per_body", "pymunk_rss_B_per_body",
+    "ref_rss_B_per_body", "memory_loadavg_1min",
 ]  # fmt: skip
 
 TABLE = [
     ("N", "n", "d"),
     ("load", "loadavg_1min", ".2f"),
     ("pge s", "pge_wall_s", ".2f"),
+    ("cpu s", "pge_cpu_s", ".2f"),
     ("events", "pge_events", ",d"),
     ("us/event", "pge_us_per_event", ".2f"),
     ("pair coll", "pge_pair_collisions", ",d"),
     ("pair coll/s", "pge_pair_collisions_per_s", ",.0f"),
     ("pymunk s", "pymunk_wall_s", ".2f"),
+    ("cpu s", "pymunk_cpu_s", ".2f"),
     ("ms/step", "pymunk_ms_per_step", ".3f"),
     ("pymunk contacts", "pymunk_pair_contacts", ",d"),
     ("pymunk overlap/r", "pymunk_max_overlap_rel_radius", ".2f"),
@@ -443,6 +460,7 @@ TABLE = [
     ("ref pair coll/s", "ref_pair_collisions_per_s", ",.0f"),
     ("pymunk/pge", "pymunk_over_pge", ".2f"),
     ("ref/pge", "ref_over_pge", ".2f"),
+    ("pymunk/pge cpu", "pymunk_over_pge_cpu", ".2f"),
 ]
 
 MEMORY_TABLE = [
@@ -596,6 +614,17 @@ def main(argv=None) -> int:
     print(f"pge warm-up (kernels loaded or compiled, not timed): {pge_warm_up(args.seed):.2f} s", flush=True)
 
     rows: dict[int, dict] = {}
+    stored_memory = {}  # read now: --memory-from may be the CSV this run rewrites
+    if args.memory_from is not None:
+        with open(args.memory_from, newline="", encoding="utf-8") as handle:
+            for earlier in csv.DictReader(handle):
+                if earlier.get("memory_duration_s"):
+                    copied = {key: float(earlier[key]) for key in MEMORY_COLUMNS if earlier.get(key)}
+                    copied["memory_source"] = (
+                        earlier.get("memory_source") if earlier.get("memory_source") not in (None, "", "measured")
+                        else f"{args.memory_from.name} {earlier['timestamp_utc']}"
+                    )
+                    stored_memory[int(earlier["n"])] = copied
 
     def save() -> None:
         write_csv(out, [rows[n] for n in sorted(rows)])
@@ -611,6 +640,7 @@ def main(argv=None) -> int:
         print(f" {row['pge_wall_s']:.2f} s; pymunk x{args.repeat} ...", end="", flush=True)
         row.update(run_pymunk(gas, args.duration, args.dt, args.repeat))
         row["pymunk_over_pge"] = row["pymunk_wall_s"] / row["pge_wall_s"]
+        row["pymunk_over_pge_cpu"] = row["pymunk_cpu_s"] / row["pge_cpu_s"]
         print(f" {row['pymunk_wall_s']:.2f} s", end="", flush=True)
         if args.no_reference:
             row["ref_status"] = "not run (--no-reference)"
@@ -629,15 +659,21 @@ def main(argv=None) -> int:
                 row.update(run_ref(gas, args.duration, args.reference_repeat))
                 row["ref_status"] = "measured"
                 row["ref_over_pge"] = row["ref_wall_s"] / row["pge_wall_s"]
+                row["ref_over_pge_cpu"] = row["ref_cpu_s"] / row["pge_cpu_s"]
                 measured_ref.append((n, row["ref_wall_s"]))
                 print(f" {row['ref_wall_s']:.2f} s", end="", flush=True)
         print(flush=True)
         save()
 
-    for n in args.memory_sizes:
+    for n, copied in stored_memory.items():
+        rows.setdefault(n, dict(common, n=n, box_side=box_side(n), radius=RADIUS)).update(copied)
+    if stored_memory:
+        save()
+    for n in [] if args.memory_from is not None else args.memory_sizes:
         row = rows.setdefault(n, dict(common, n=n, box_side=box_side(n), radius=RADIUS))
         row["memory_duration_s"] = args.memory_duration
         row["memory_loadavg_1min"] = _loadavg()
+        row["memory_source"] = "measured"
         for engine in ("pge", "pymunk", "ref"):
             print(f"memory N = {n}: {engine} ...", end="", flush=True)
             found = measure_memory(engine, n, args.seed, args.memory_duration)
@@ -660,11 +696,17 @@ def main(argv=None) -> int:
     if with_memory:
         print()
         print("Memory per body: pge state = nbytes of the engine's numpy arrays; RSS = peak RSS growth of a fresh "
-              f"process building the gas and running it {args.memory_duration:g} s")
+              f"process building the gas and running it {with_memory[0]['memory_duration_s']:g} s"
+              + ("" if with_memory[0].get("memory_source") == "measured"
+                 else f" (copied from {with_memory[0].get('memory_source')})"))
         print(table(with_memory, MEMORY_TABLE))
     for row in timed:
         if row["loadavg_1min"] > 1.0:
             print(f"note: N = {row['n']}: load average {row['loadavg_1min']:.2f} at the start: times may be inflated")
+        for engine in ("pge", "pymunk"):
+            if row[f"{engine}_wall_s"] > 1.2 * row[f"{engine}_cpu_s"]:
+                print(f"note: N = {row['n']}: {engine}'s wall time is {row[f'{engine}_wall_s'] / row[f'{engine}_cpu_s']:.2f}x "
+                      "its CPU time: it waited for a CPU; compare the CPU times")
         if row.get("pge_max_overlap_rel_radius"):
             print(f"warning: N = {row['n']}: pge ends with overlaps ({row['pge_max_overlap_rel_radius']:.2g} r)")
     if timed:
