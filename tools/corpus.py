@@ -482,7 +482,9 @@ def _plot(rows, path) -> None:
     print(f"histogram: {path}")
 
 
-def _seed_range(text: str) -> range:
+def _seed_range(text: str):
+    if "," in text:
+        return [int(part) for part in text.split(",")]
     if ":" in text:
         a, b = text.split(":")
         return range(int(a), int(b))
@@ -493,7 +495,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="run scenes in worker processes and write a CSV")
-    run.add_argument("--seeds", type=_seed_range, default=range(0, 200), help="A:B (default 0:200)")
+    run.add_argument("--seeds", type=_seed_range, default=range(0, 200), help="A:B, or a list A,B,C (default 0:200)")
     run.add_argument("--until", type=float, default=20.0, help="simulated seconds (20)")
     run.add_argument("--timeout", type=float, default=120.0, help="wall-time limit per scene, s (120)")
     run.add_argument("--processes", type=int, default=2, help="worker processes (at most 2)")

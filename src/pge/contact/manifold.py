@@ -17,6 +17,7 @@ from numba import njit
 from pge.toi.circle_polygon import closest_feature
 
 _INF = math.inf
+_CORNER_KEY = 1 << 14  # keys of corner points, apart from the clipped points' (below 2**14)
 #: columns of a manifold row
 PX, PY, NX, NY, SEPARATION, KEY = 0, 1, 2, 3, 4, 5
 NCOLUMNS = 6
@@ -143,7 +144,7 @@ def polygon_polygon_points(ax, ay, OL, sa, na, bx, by, sb, nb, margin, tolerance
             outside1 = u1 > lo
             outside2 = u2 > lo
         if outside1 and outside2:
-            return count
+            return _corner_point(OL, rs, rn, rx, ry, face, js, jn, jx, jy, sign, owner, out, count)
         if outside1 or outside2:
             f = (lo - u1) / (u2 - u1)
             cx = w1x + f * (w2x - w1x)
@@ -152,6 +153,7 @@ def polygon_polygon_points(ax, ay, OL, sa, na, bx, by, sb, nb, margin, tolerance
                 w1x, w1y, u1 = cx, cy, lo
             else:
                 w2x, w2y, u2 = cx, cy, lo
+    before = count
     for end in range(2):
         wx = w1x if end == 0 else w2x
         wy = w1y if end == 0 else w2y
@@ -165,4 +167,40 @@ def polygon_polygon_points(ax, ay, OL, sa, na, bx, by, sb, nb, margin, tolerance
         out[count, SEPARATION] = separation
         out[count, KEY] = float(((owner * 64 + face) * 64 + incident) * 2 + end)
         count += 1
+    if count == before:
+        return _corner_point(OL, rs, rn, rx, ry, face, js, jn, jx, jy, sign, owner, out, count)
     return count
+
+
+@njit(cache=True)
+def _corner_point(OL, rs, rn, rx, ry, face, js, jn, jx, jy, sign, owner, out, count):
+    """Append the one point of a corner contact whose incident face clips away (two corners
+    meeting, a sharp corner beside the reference face's end): the other polygon's deepest
+    vertex along the reference normal, whose separation is the separating-axis value that
+    admitted the pair, so the manifold is never empty when the polygons are within the
+    margin. The point lies midway to the reference face's line, clamped to the face."""
+    nx = OL[rs + face, 2]
+    ny = OL[rs + face, 3]
+    v1x = rx + OL[rs + face, 0]
+    v1y = ry + OL[rs + face, 1]
+    deepest = 0
+    least = _INF
+    for q in range(jn):
+        d = (jx + OL[js + q, 0] - v1x) * nx + (jy + OL[js + q, 1] - v1y) * ny
+        if d < least:
+            least = d
+            deepest = q
+    wx = jx + OL[js + deepest, 0]
+    wy = jy + OL[js + deepest, 1]
+    tx = -ny
+    ty = nx
+    along = min(max((wx - v1x) * tx + (wy - v1y) * ty, 0.0), OL[rs + face, 4])
+    fx = v1x + along * tx  # the nearest point of the reference face to the vertex
+    fy = v1y + along * ty
+    out[count, PX] = 0.5 * (wx + fx)
+    out[count, PY] = 0.5 * (wy + fy)
+    out[count, NX] = sign * nx
+    out[count, NY] = sign * ny
+    out[count, SEPARATION] = least
+    out[count, KEY] = float(_CORNER_KEY + (owner * 64 + face) * 64 + deepest)
+    return count + 1
