@@ -10,10 +10,10 @@ bit-identical positions and velocities.
   travel per horizon come from the disc radius (4 r and 2 r here, recorded in the CSV), so the
   scene behaves as ``gas.py``'s unit-box gas scaled up. Four fixed wall boxes 0.05 L thick lie
   outside the box (they are clamped into the border cells). Timed: ``run_until(duration)``.
-* pymunk: ``pymunk.Space()`` with its defaults (10 iterations, collision slop 0.1, its bias and
+* pymunk (its runs alternate with pge's): ``pymunk.Space()`` with its defaults (10 iterations, collision slop 0.1, its bias and
   persistence), ``step(dt)`` with dt = 0.01, discs of mass 1 (moment of a solid disc), static
   box polygons for walls, elasticity 1 and friction 0 on every shape. Timed: the steps alone
-  (each ``space.step`` between two ``perf_counter`` calls). After every step, untimed, the
+  (wall and CPU time around each ``space.step``). After every step, untimed, the
   cached arbiters are read with ``pymunk.batch`` to get the deepest overlap seen (contact
   distance) and the number of new disc-disc contacts (= pymunk's ``begin`` callbacks): that is
   the fairness note, pymunk lets discs overlap and pge does not.
@@ -33,6 +33,7 @@ each engine builds the gas and runs it briefly in a fresh child process; ``rss_B
     .venv/bin/python benchmarks/vs_pymunk.py --repeat 3 --memory-sizes 100000 1000000
     .venv/bin/python benchmarks/vs_pymunk.py --repeat 3 --memory-from results/vs-pymunk-old.csv  # timings only
 
+Every engine's CPU time is recorded next to its wall time: on a shared machine compare those.
 Prints a table, writes ``benchmarks/results/vs-pymunk-<hostname>.csv`` (rewritten after every N)
 and the log-log plot ``benchmarks/results/vs-pymunk-<hostname>.png``. It only measures: it never
 fails on a timing.
@@ -188,8 +189,8 @@ def pge_once(gas, duration: float) -> dict:
     }
 
 
-def run_pge(gas, duration: float, repeat: int) -> dict:
-    runs = [pge_once(gas, duration) for _ in range(repeat)]
+def run_pge(gas, duration: float, repeat: int, runs: list | None = None) -> dict:
+    runs = runs if runs is not None else [pge_once(gas, duration) for _ in range(repeat)]
     best = min(runs, key=lambda run: run["wall_s"])
     s = best["stats"]
     wall = best["wall_s"]
@@ -315,8 +316,8 @@ def pymunk_once(gas, duration: float, dt: float) -> dict:
     }
 
 
-def run_pymunk(gas, duration: float, dt: float, repeat: int) -> dict:
-    runs = [pymunk_once(gas, duration, dt) for _ in range(repeat)]
+def run_pymunk(gas, duration: float, dt: float, repeat: int, runs: list | None = None) -> dict:
+    runs = runs if runs is not None else [pymunk_once(gas, duration, dt) for _ in range(repeat)]
     best = min(runs, key=lambda run: run["wall_s"])
     wall = best["wall_s"]
     r = gas.radius
@@ -534,8 +535,9 @@ def plot(rows: list[dict], path: Path, title: str) -> None:
     for row in timed:
         if row.get("ref_status", "").startswith("skipped") and row.get("ref_projected_s"):
             axes.plot([row["n"]], [row["ref_projected_s"]], "^", color="tab:green", fillstyle="none")
-            axes.annotate("reference skipped\n(projected)", (row["n"], row["ref_projected_s"]),
-                          textcoords="offset points", xytext=(-10, 8), fontsize=8, color="tab:green", ha="right")
+            axes.annotate(f"reference skipped\n(projected {row['ref_projected_s'] / 60:.0f} min)",
+                          (row["n"], row["ref_projected_s"]), textcoords="offset points", xytext=(-10, 0),
+                          fontsize=8, color="tab:green", ha="right", va="center")
     if timed:
         duration = timed[0]["duration_s"]
         axes.axhline(duration, color="grey", linestyle="--", linewidth=0.8)
@@ -634,11 +636,16 @@ def main(argv=None) -> int:
         gas = make_gas(n, args.seed)
         row = dict(common, n=n, box_side=gas.box[2], radius=gas.radius, loadavg_1min=_loadavg())
         rows[n] = row
-        print(f"N = {n} (L = {gas.box[2]:.1f}, load {row['loadavg_1min']:.2f}): pge x{args.repeat} ...", end="",
-              flush=True)
-        row.update(run_pge(gas, args.duration, args.repeat))
-        print(f" {row['pge_wall_s']:.2f} s; pymunk x{args.repeat} ...", end="", flush=True)
-        row.update(run_pymunk(gas, args.duration, args.dt, args.repeat))
+        print(f"N = {n} (L = {gas.box[2]:.1f}, load {row['loadavg_1min']:.2f}): pge and pymunk, alternating, "
+              f"x{args.repeat} ...", end="", flush=True)
+        # Alternate the two so that a change in the machine's speed during the row hits both.
+        pge_runs, pymunk_runs = [], []
+        for _ in range(args.repeat):
+            pge_runs.append(pge_once(gas, args.duration))
+            pymunk_runs.append(pymunk_once(gas, args.duration, args.dt))
+        row.update(run_pge(gas, args.duration, args.repeat, pge_runs))
+        row.update(run_pymunk(gas, args.duration, args.dt, args.repeat, pymunk_runs))
+        print(f" pge {row['pge_wall_s']:.2f} s, pymunk", end="", flush=True)
         row["pymunk_over_pge"] = row["pymunk_wall_s"] / row["pge_wall_s"]
         row["pymunk_over_pge_cpu"] = row["pymunk_cpu_s"] / row["pge_cpu_s"]
         print(f" {row['pymunk_wall_s']:.2f} s", end="", flush=True)
