@@ -308,22 +308,36 @@ def cell(value, spec: str) -> str:
     return format(value, spec)
 
 
-def table(rows: list[dict], columns) -> str:
+def table(rows: list[dict], columns, notes: dict | None = None) -> str:
+    """Aligned text table; ``notes`` maps a key to another key whose text is shown in place
+    of a missing value."""
+    notes = notes or {}
     header = [title for title, _, _ in columns]
-    body = [[cell(row.get(key), spec) for _, key, spec in columns] for row in rows]
+    body = []
+    for row in rows:
+        line = []
+        for _, key, spec in columns:
+            value = row.get(key)
+            if (value is None or value == "") and row.get(notes.get(key, "")):
+                line.append(str(row[notes[key]]))
+            else:
+                line.append(cell(value, spec))
+        body.append(line)
     widths = [max(len(text) for text in column) for column in zip(header, *body)]
     lines = ["  ".join(text.rjust(width) for text, width in zip(line, widths)) for line in [header] + body]
     lines.insert(1, "  ".join("-" * width for width in widths))
     return "\n".join(lines)
 
 
-def write_csv(path: Path, rows: list[dict]) -> None:
+def write_csv(path: Path, rows: list[dict], columns=None) -> None:
+    """Write ``rows`` with ``columns`` (default: this script's), missing values empty."""
+    columns = CSV_COLUMNS if columns is None else columns
     path.parent.mkdir(parents=True, exist_ok=True)
     with open(path, "w", newline="", encoding="utf-8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=CSV_COLUMNS, extrasaction="ignore")
+        writer = csv.DictWriter(handle, fieldnames=columns, extrasaction="ignore")
         writer.writeheader()
         for row in rows:
-            writer.writerow({key: ("" if row.get(key) is None else row.get(key)) for key in CSV_COLUMNS})
+            writer.writerow({key: ("" if row.get(key) is None else row.get(key)) for key in columns})
 
 
 # ------------------------------------------------------------------------- main
@@ -421,7 +435,7 @@ def main(argv=None) -> int:
     rows = []
     for n in args.sizes:
         gas = disc_gas(n, seed=args.seed)
-        row = dict(common, n=n, radius=gas.radius, loadavg_1min=_loadavg())
+        row = dict(common, n=n, radius=gas.radius, loadavg_1min=loadavg())
         print(f"N = {n}: engine x{args.repeat} ...", end="", flush=True)
         row.update(run_engine(World, gas, args.duration, args.repeat))
         print(f" {row['engine_wall_s']:.3f} s", end="", flush=True)
@@ -505,7 +519,8 @@ def main(argv=None) -> int:
     return 0
 
 
-def _loadavg() -> float:
+def loadavg() -> float:
+    """The 1-minute load average, or NaN where the system has none."""
     try:
         return os.getloadavg()[0]
     except OSError:

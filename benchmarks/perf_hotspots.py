@@ -25,6 +25,10 @@ import subprocess
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from profile_events import short_name  # noqa: E402  (the same symbol names as the perf map)
+
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -96,19 +100,6 @@ def disassemble(obj: Path, function: str) -> dict[int, str]:
             if offset >= 0:
                 code[offset] = re.sub(r"<_ZN\S+>", "<...>", m.group(2))
     return code
-
-
-def short_name(symbol: str) -> str:
-    """``_ZN3pge4core7predict7predictB3v63...`` -> ``pge.core.predict.predict``."""
-    if not symbol.startswith("_ZN"):
-        return symbol
-    i, parts = 3, []
-    while i < len(symbol) and symbol[i].isdigit():
-        digits = re.match(r"\d+", symbol[i:]).group()
-        i += len(digits)
-        parts.append(symbol[i : i + int(digits)])
-        i += int(digits)
-    return ".".join(parts) or symbol
 
 
 if __name__ == "__main__":

@@ -58,7 +58,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from gas import cpu_model, git_commit  # noqa: E402
+from gas import cpu_model, git_commit, loadavg, table, write_csv  # noqa: E402
 
 RADIUS = 5.0
 AREA_FRACTION = 0.1
@@ -474,41 +474,6 @@ MEMORY_TABLE = [
 ]
 
 
-def cell(value, spec: str) -> str:
-    if value is None or value == "" or (isinstance(value, float) and math.isnan(value)):
-        return "-"
-    return format(value, spec)
-
-
-def table(rows: list[dict], columns, notes: dict | None = None) -> str:
-    """Aligned text table; ``notes`` maps a key to a text shown in place of a missing value."""
-    notes = notes or {}
-    header = [title for title, _, _ in columns]
-    body = []
-    for row in rows:
-        line = []
-        for _, key, spec in columns:
-            value = row.get(key)
-            if (value is None or value == "") and row.get(notes.get(key, "")):
-                line.append(str(row[notes[key]]))
-            else:
-                line.append(cell(value, spec))
-        body.append(line)
-    widths = [max(len(text) for text in column) for column in zip(header, *body)]
-    lines = ["  ".join(text.rjust(width) for text, width in zip(line, widths)) for line in [header] + body]
-    lines.insert(1, "  ".join("-" * width for width in widths))
-    return "\n".join(lines)
-
-
-def write_csv(path: Path, rows: list[dict]) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "w", newline="", encoding="utf-8") as handle:
-        writer = csv.DictWriter(handle, fieldnames=CSV_COLUMNS, extrasaction="ignore")
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({key: ("" if row.get(key) is None else row.get(key)) for key in CSV_COLUMNS})
-
-
 def plot(rows: list[dict], path: Path, title: str) -> None:
     import matplotlib
 
@@ -561,13 +526,6 @@ def plot(rows: list[dict], path: Path, title: str) -> None:
 
 
 # ------------------------------------------------------------------------- main
-
-
-def _loadavg() -> float:
-    try:
-        return os.getloadavg()[0]
-    except OSError:
-        return math.nan
 
 
 def main(argv=None) -> int:
@@ -629,12 +587,12 @@ def main(argv=None) -> int:
                     stored_memory[int(earlier["n"])] = copied
 
     def save() -> None:
-        write_csv(out, [rows[n] for n in sorted(rows)])
+        write_csv(out, [rows[n] for n in sorted(rows)], CSV_COLUMNS)
 
     measured_ref: list[tuple[int, float]] = []
     for n in args.sizes:
         gas = make_gas(n, args.seed)
-        row = dict(common, n=n, box_side=gas.box[2], radius=gas.radius, loadavg_1min=_loadavg())
+        row = dict(common, n=n, box_side=gas.box[2], radius=gas.radius, loadavg_1min=loadavg())
         rows[n] = row
         print(f"N = {n} (L = {gas.box[2]:.1f}, load {row['loadavg_1min']:.2f}): pge and pymunk, alternating, "
               f"x{args.repeat} ...", end="", flush=True)
@@ -679,7 +637,7 @@ def main(argv=None) -> int:
     for n in [] if args.memory_from is not None else args.memory_sizes:
         row = rows.setdefault(n, dict(common, n=n, box_side=box_side(n), radius=RADIUS))
         row["memory_duration_s"] = args.memory_duration
-        row["memory_loadavg_1min"] = _loadavg()
+        row["memory_loadavg_1min"] = loadavg()
         row["memory_source"] = "measured"
         for engine in ("pge", "pymunk", "ref"):
             print(f"memory N = {n}: {engine} ...", end="", flush=True)
