@@ -43,9 +43,10 @@ ROUNDING = 1e-13  # the reference's own rounding of a contact time (s)
 # ------------------------------------------------------------------ reference
 
 
-def _place(local, theta, omega, t, x, y):
-    """World vertices ``(T, n, 2)`` of a polygon at the times ``t``."""
-    angle = theta + omega * t
+def _place(local, theta, omega, t, x, y, alpha=0.0):
+    """World vertices ``(T, n, 2)`` of a polygon at the times ``t``, turned by
+    ``theta + omega t + alpha t^2 / 2``."""
+    angle = theta + omega * t + 0.5 * alpha * t * t
     c = np.cos(angle)[:, None]
     s = np.sin(angle)[:, None]
     lx = local[:, 0][None, :]
@@ -80,14 +81,14 @@ def _offset(d, dv, da, t):
     return d[0] + dv[0] * t + 0.5 * da[0] * t * t, d[1] + dv[1] * t + 0.5 * da[1] * t * t
 
 
-def polygon_gap(local_a, theta_a, omega_a, local_b, theta_b, omega_b, d, dv, da):
+def polygon_gap(local_a, theta_a, omega_a, local_b, theta_b, omega_b, d, dv, da, alpha_a=0.0, alpha_b=0.0):
     """Signed gap of two polygons as a function of an array of times (b's centroid at 0)."""
 
     def gap(t):
         t = np.atleast_1d(np.asarray(t, float))
         x, y = _offset(d, dv, da, t)
-        A = _place(local_a, theta_a, omega_a, t, x, y)
-        B = _place(local_b, theta_b, omega_b, t, 0.0 * t, 0.0 * t)
+        A = _place(local_a, theta_a, omega_a, t, x, y, alpha_a)
+        B = _place(local_b, theta_b, omega_b, t, 0.0 * t, 0.0 * t, alpha_b)
         separation = np.maximum(_axis_separation(A, B), _axis_separation(B, A))
         distance = np.minimum(_segment_distance(A, B).min(axis=1), _segment_distance(B, A).min(axis=1))
         return np.where(separation <= 0.0, separation, distance)
@@ -95,14 +96,14 @@ def polygon_gap(local_a, theta_a, omega_a, local_b, theta_b, omega_b, d, dv, da)
     return gap
 
 
-def circle_gap(radius, local_b, theta_b, omega_b, d, dv, da):
+def circle_gap(radius, local_b, theta_b, omega_b, d, dv, da, alpha_b=0.0):
     """Signed gap of a circle (centre at ``d(t)``) and a polygon (centroid at 0)."""
 
     def gap(t):
         t = np.atleast_1d(np.asarray(t, float))
         x, y = _offset(d, dv, da, t)
         C = np.stack([x, y], axis=-1)[:, None, :]
-        B = _place(local_b, theta_b, omega_b, t, 0.0 * t, 0.0 * t)
+        B = _place(local_b, theta_b, omega_b, t, 0.0 * t, 0.0 * t, alpha_b)
         separation = ((C - B) * _outward_normals(B)).sum(-1).max(axis=1)
         return np.where(separation <= 0.0, separation, _segment_distance(C, B)[:, 0]) - radius
 
@@ -628,3 +629,114 @@ def test_typical_prediction_takes_few_iterations():
         counts.append(iterations)
     assert np.median(counts) <= 20
     assert max(counts) <= 200
+
+
+# ------------------------------------------------------------------ angular acceleration
+
+twists = st.one_of(st.floats(-400.0, 400.0), st.sampled_from([-400.0, 400.0, 1e-6, 0.0]))
+
+
+def _angle_root(omega, alpha, angle):
+    """Earliest ``t > 0`` with ``omega t + alpha t^2 / 2 = angle``, to 30 digits (mpmath)."""
+    mpmath = pytest.importorskip("mpmath")
+    with mpmath.workdps(30):
+        w, a, phi = mpmath.mpf(omega), mpmath.mpf(alpha), mpmath.mpf(angle)
+        disc = w * w + 2 * a * phi
+        roots = [r for r in ((-w + mpmath.sqrt(disc)) / a, (-w - mpmath.sqrt(disc)) / a) if r > 0] if disc >= 0 else []
+        return float(min(roots)) if roots else INF
+
+
+@pytest.mark.parametrize(
+    "omega, alpha",
+    [(0.0, -30.0), (0.0, -400.0), (-2.0, -30.0), (3.0, -60.0), (-12.0, 25.0)],
+)
+def test_rod_turning_with_angular_acceleration_hits_the_circle_at_the_closed_form_time(omega, alpha):
+    """A rod spun up (or slowing, or turning back) about its centroid meets a circle at the angle
+    where sin(-angle) = (r + w) / rho; the time solves omega t + alpha t^2 / 2 = angle (mpmath)."""
+    half_length, half_width, radius, rho = 0.3, 0.01, 0.05, 0.2
+    rod = box(2 * half_width, 2 * half_length)
+    outline = outline_rows(rod)
+    t, feature = rotating_circle_polygon(
+        rho, 0.0, 0.0, 0.0, 0.0, 0.0, radius, outline, 0, 4, 0.0, omega, 1.0, 0.0, alpha
+    )
+    touch = math.pi / 2.0 - math.asin((radius + half_width) / rho)  # clockwise angle of the touch
+    # the first time the rod's angle reaches -touch (clockwise) or pi - touch... either side
+    # of the rod meets the circle: its +x side at angle -touch, its -x side at angle touch - pi
+    exact = min(_angle_root(omega, alpha, -touch), _angle_root(omega, alpha, touch - math.pi),
+                _angle_root(omega, alpha, math.pi - touch), _angle_root(omega, alpha, touch))
+    assert exact < 1.0
+    assert exact - 1e-12 <= t <= exact + 1e-15
+    angle = omega * t + 0.5 * alpha * t * t
+    px, py, nx, ny = rotating_circle_polygon_contact(rho, 0.0, radius, 0.0, 0.0, outline, 0, 4, angle, feature)
+    assert math.hypot(px - rho, py) == pytest.approx(radius, abs=1e-9)
+
+
+def test_a_spin_that_stops_short_of_the_wall_turns_back_without_a_contact():
+    """A square spinning towards a wall stops (omega + alpha t = 0) just before its corner would
+    reach it: no contact, where a kernel ignoring alpha would report one."""
+    c = SQUARE + 0.9 * (SQUARE * math.sqrt(2.0) - SQUARE)
+    reach = math.asin(c / (SQUARE * math.sqrt(2.0))) - math.pi / 4.0  # angle at which the corner touches
+    outline, d = square_and_wall(c)
+    omega = 4.0
+    alpha = -omega * omega / (2.0 * 0.98 * reach)  # stops at 98 % of that angle
+    t, _ = rotating_polygon_polygon(d[0], d[1], 0.0, 0.0, 0.0, 0.0, outline, 0, 4, 0.0, omega, 4, 4, 0.0, 0.0, 0.2,
+                                    0.0, alpha, 0.0)
+    assert t == INF
+    naive, _ = rotating_polygon_polygon(d[0], d[1], 0.0, 0.0, 0.0, 0.0, outline, 0, 4, 0.0, omega, 4, 4, 0.0, 0.0, 0.2)
+    assert naive < 0.2
+    # a little less braking and it does touch, at the mpmath time
+    alpha = -omega * omega / (2.0 * 1.02 * reach)
+    t, feature = rotating_polygon_polygon(d[0], d[1], 0.0, 0.0, 0.0, 0.0, outline, 0, 4, 0.0, omega, 4, 4, 0.0, 0.0,
+                                          1.0, 0.0, alpha, 0.0)
+    exact = _angle_root(omega, alpha, reach)
+    assert exact - 1e-12 <= t <= exact + 1e-15
+    assert feature == 3
+
+
+def _with_twist(case, alpha_a, alpha_b):
+    local_a, theta_a, omega_a, local_b, theta_b, omega_b, d, dv, da = case
+    outline = np.vstack([outline_rows(local_a), outline_rows(local_b)])
+    na, nb = len(local_a), len(local_b)
+    t, feature = rotating_polygon_polygon(
+        d[0], d[1], dv[0], dv[1], da[0], da[1], outline, 0, na, theta_a, omega_a, na, nb, theta_b, omega_b, HORIZON,
+        0.0, alpha_a, alpha_b,
+    )
+    gap = polygon_gap(local_a, theta_a, omega_a, local_b, theta_b, omega_b, d, dv, da, alpha_a, alpha_b)
+    lipschitz = (
+        math.hypot(*dv)
+        + math.hypot(*da) * HORIZON
+        + (abs(omega_a) + abs(alpha_a) * HORIZON) * bounding(local_a)
+        + (abs(omega_b) + abs(alpha_b) * HORIZON) * bounding(local_b)
+    )
+    return t, feature, gap, lipschitz
+
+
+@settings(deadline=None, max_examples=60)
+@given(polygon_and_wall(), twists)
+def test_polygon_with_angular_acceleration_against_wall_matches_brute_force(case, alpha_a):
+    """Random polygons turning with |alpha| <= 400 rad/s^2 against walls: as the reference, never later."""
+    t, _, gap, lipschitz = _with_twist(case, alpha_a, 0.0)
+    assert_agrees(t, gap, lipschitz)
+
+
+@settings(deadline=None, max_examples=60)
+@given(polygon_pairs(), twists, twists)
+def test_two_polygons_with_angular_accelerations_match_brute_force(case, alpha_a, alpha_b):
+    """Random pairs, both turning with angular accelerations: as the reference, never later."""
+    t, _, gap, lipschitz = _with_twist(case, alpha_a, alpha_b)
+    assert_agrees(t, gap, lipschitz)
+
+
+@settings(deadline=None, max_examples=60)
+@given(circle_and_polygon(), twists)
+def test_circle_against_polygon_with_angular_acceleration_matches_brute_force(case, alpha_b):
+    """Random circles against polygons turning with angular acceleration: as the reference."""
+    radius, local_b, theta_b, omega_b, d, dv, da = case
+    outline = outline_rows(local_b)
+    t, _ = rotating_circle_polygon(
+        *d, *dv, *da, radius, outline, 0, len(local_b), theta_b, omega_b, HORIZON, 0.0, alpha_b
+    )
+    lipschitz = (
+        math.hypot(*dv) + math.hypot(*da) * HORIZON + (abs(omega_b) + abs(alpha_b) * HORIZON) * bounding(local_b)
+    )
+    assert_agrees(t, circle_gap(radius, local_b, theta_b, omega_b, d, dv, da, alpha_b), lipschitz)

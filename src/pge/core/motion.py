@@ -3,9 +3,10 @@
 Between events a body moves with constant acceleration and turns with
 constant angular acceleration: at time ``t`` its reference point is at
 ``X + VX dt + AX dt^2 / 2`` and its angle is ``ANGLE + OMEGA dt + ALPHA dt^2 / 2``,
-with ``dt = t - T0``. ``ALPHA`` is zero except for a circle resting with friction on
-a flat face, whose spin the friction at its contact changes (rolling and skidding);
-a polygon turns at a constant rate, so the rotating kernels see ``ANGLE + OMEGA dt``. A polygon's outline rows in ``OL`` are turned to the angle
+with ``dt = t - T0``. ``ALPHA`` is nonzero for a circle resting with friction on a
+flat face, whose spin the friction at its contact changes (rolling and skidding),
+and for a body that an island's contact forces turn (``pge.contact``); the
+rotating kernels take it. A polygon's outline rows in ``OL`` are turned to the angle
 ``ORIENT``; ``orient`` turns them to the body's angle now (from the unturned
 rows in ``OB``, never incrementally, so no rounding accumulates).
 """
@@ -100,7 +101,7 @@ def orient(F, I, OL, OB, i, t):
             OL[k, 2] = c * nx - s * ny
             OL[k, 3] = s * nx + c * ny
         F[i, L.ORIENT] = angle
-    if F[i, L.OMEGA] != 0.0:
+    if F[i, L.OMEGA] != 0.0 or F[i, L.ALPHA] != 0.0:
         reach = F[i, L.REACH]
         F[i, L.EXT_X0] = -reach
         F[i, L.EXT_Y0] = -reach

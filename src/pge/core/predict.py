@@ -18,7 +18,7 @@ from numba import njit
 from pge.broadphase.bounds import cannot_touch_before, lecture_cannot_touch, swept_range, travel_horizon
 from pge.core import layout as L
 from pge.core.grid import file_in_cell, gather, gather_all
-from pge.core.motion import kernel_angle, orient, state_at
+from pge.core.motion import kernel_angle, orient, spin_at, state_at
 from pge.core.overlap import overlap_depth
 from pge.core.queue import push
 from pge.core.tuning import MIN_TICKS
@@ -35,8 +35,8 @@ _LONGEST_SPAN = 1e300
 
 @njit(cache=True, inline="always")
 def spinning(F, I, i):
-    """True for a polygon that turns (a circle's turning does not change its shape)."""
-    return I[i, L.KIND] != CIRCLE and F[i, L.OMEGA] != 0.0
+    """True for a polygon that turns or is spun up (a circle's turning does not change its shape)."""
+    return I[i, L.KIND] != CIRCLE and (F[i, L.OMEGA] != 0.0 or F[i, L.ALPHA] != 0.0)
 
 
 @njit(cache=True, inline="always")
@@ -81,9 +81,11 @@ def place(S, i):
     ay = F[i, L.AY]
     x, y, vx, vy = state_at(F, i, now)
     spin = 0.0
+    twist = 0.0
     if spinning(F, I, i):
-        spin = abs(F[i, L.OMEGA]) * F[i, L.REACH]
-    if I[i, L.FIXED] != 0 or (vx == 0.0 and vy == 0.0 and ax == 0.0 and ay == 0.0 and spin == 0.0):
+        spin = abs(spin_at(F, i, now)) * F[i, L.REACH]
+        twist = abs(F[i, L.ALPHA]) * F[i, L.REACH]
+    if I[i, L.FIXED] != 0 or (vx == 0.0 and vy == 0.0 and ax == 0.0 and ay == 0.0 and spin == 0.0 and twist == 0.0):
         horizon = _INF
         x0 = x
         x1 = x
@@ -92,7 +94,7 @@ def place(S, i):
     else:
         # A spinning polygon's corners travel |omega| R faster than its centroid: the
         # horizon bounds their path too, which keeps the rotating kernels' windows short.
-        span = travel_horizon(math.hypot(vx, vy) + spin, math.hypot(ax, ay), P[L.TRAVEL])
+        span = travel_horizon(math.hypot(vx, vy) + spin, math.hypot(ax, ay) + twist, P[L.TRAVEL])
         # A speed of 1e-310 (denormal, left by a long decay) overflows the span to inf, and
         # v * inf would make the box infinite, which the grid cannot file.
         span = min(span, _LONGEST_SPAN)
@@ -271,7 +273,8 @@ def predict(S, i, mark):
                 key = (j << L.ID_SHIFT) | i
             closing = (
                 math.hypot(dvx, dvy) + math.hypot(dax, day) * t
-                + abs(F[i, L.OMEGA]) * F[i, L.REACH] + abs(F[j, L.OMEGA]) * F[j, L.REACH]
+                + (abs(spin_at(F, i, now)) + abs(F[i, L.ALPHA]) * t) * F[i, L.REACH]
+                + (abs(spin_at(F, j, now)) + abs(F[j, L.ALPHA]) * t) * F[j, L.REACH]
             )
             allowance = P[L.OVERLAP_TOLERANCE] * (F[i, L.REACH] + F[j, L.REACH])
             when = contact_time(now, t, closing, allowance)
@@ -301,8 +304,9 @@ def still_excused(S, i, j):
 @njit(cache=True)
 def _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window, still):
     """First contact of ``i`` and ``j`` when a polygon among them spins: the rotating
-    kernels on the unturned outlines ``OB`` and the angles now. ``d, dv, da`` are
-    ``i`` relative to ``j``; a (polygon, circle) pair is turned round."""
+    kernels on the unturned outlines ``OB`` and the angles, spins and angular
+    accelerations now. ``d, dv, da`` are ``i`` relative to ``j``; a (polygon,
+    circle) pair is turned round."""
     F = S[0]
     I = S[1]
     OB = S[18]
@@ -311,18 +315,18 @@ def _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window, still):
             return _INF, 0
         return rotating_circle_polygon(
             dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], OB, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N],
-            kernel_angle(F, j, now), F[j, L.OMEGA], window, still,
+            kernel_angle(F, j, now), spin_at(F, j, now), window, still, F[j, L.ALPHA],
         )
     if I[j, L.KIND] == CIRCLE:
         return rotating_circle_polygon(
             -dx, -dy, -dvx, -dvy, -dax, -day, F[j, L.RADIUS], OB, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N],
-            kernel_angle(F, i, now), F[i, L.OMEGA], window, still,
+            kernel_angle(F, i, now), spin_at(F, i, now), window, still, F[i, L.ALPHA],
         )
     return rotating_polygon_polygon(
         dx, dy, dvx, dvy, dax, day, OB,
-        I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], kernel_angle(F, i, now), F[i, L.OMEGA],
-        I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], kernel_angle(F, j, now), F[j, L.OMEGA],
-        window, still,
+        I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], kernel_angle(F, i, now), spin_at(F, i, now),
+        I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], kernel_angle(F, j, now), spin_at(F, j, now),
+        window, still, F[i, L.ALPHA], F[j, L.ALPHA],
     )
 
 

@@ -2,8 +2,9 @@
 
 Motion model (all times relative to the common origin ``t = 0``): the offset
 of a's centroid from b's is ``D(t) = d + dv t + da t^2 / 2`` (world axes), a
-polygon's vertices are ``centroid(t) + R(theta + omega t) r_k`` with ``r_k``
-its outline rows (vertices relative to the centroid in the unrotated frame,
+polygon's vertices are ``centroid(t) + R(theta(t)) r_k``, turned by ``theta(t) =
+theta + omega t + alpha t^2 / 2`` (constant angular acceleration; its spin is
+``omega(t) = omega + alpha t``), with ``r_k`` its outline rows (vertices relative to the centroid in the unrotated frame,
 see ``pge.toi.outline_rows``), and a circle's rotation does not change its
 geometry. Rotation makes the gap transcendental, so it is not solved as a
 polynomial: the first contact is bracketed by rigorous conservative
@@ -20,17 +21,21 @@ an overlap, which is all a bracket's upper end needs.
 
 **Bound.** Seen from b's frame, a feature point ``q(t)`` with world offset
 ``w(t)`` from b's centroid has ``q'' = R(-theta_b) w'' - 2 omega_b J R(-theta_b) w'
-- omega_b^2 q``, and the value ``g = SD(q)`` of a convex, 1-Lipschitz ``SD``
-obeys ``g'' >= grad SD . q''`` almost everywhere. With ``|w''| <= |da| +
-omega_a^2 R_a``, ``|w'| <= |dv(t)| + |omega_a| R_a`` and ``grad SD . q <= SD +
-R_b`` this gives, over a window of length ``h``,
+- omega_b^2 q - alpha_b J q``, and the value ``g = SD(q)`` of a convex,
+1-Lipschitz ``SD`` obeys ``g'' >= grad SD . q''`` almost everywhere. With
+``|w''| <= |da| + omega_a^2 R_a + |alpha_a| R_a``, ``|w'| <= |dv(t)| + |omega_a|
+R_a``, ``grad SD . q <= SD + R_b`` and ``|grad SD . J q| <= |q| <= SD + R_b`` this
+gives, over a window of length ``h`` in which every ``|omega|`` is at most its
+value at the window's start plus ``|alpha| h``,
 
-    g'' >= -(|da| + omega_a^2 R_a + 2 |omega_b| (V + |omega_a| R_a) + omega_b^2 (SD_max + R_b))
+    g'' >= -(|da| + omega_a^2 R_a + 2 |omega_b| (V + |omega_a| R_a) + omega_b^2 (SD_max + R_b)
+             + |alpha_a| R_a + |alpha_b| (SD_max + R_b))
 
 with ``V = |dv(lo)| + |da| h`` and ``SD_max = max(SD(lo), 0) + L h`` (swap a
 and b for b's vertices against a). ``L = V + |omega_a| R_a + |omega_b| R_b``
 bounds every ``|g'|``, the first-order (Lipschitz) bound of classic
-conservative advancement. From a time ``lo`` before every contact the step is
+conservative advancement; from ``lo`` onwards ``|g'(lo + s)|`` grows by at
+most ``(|da| + |alpha_a| R_a + |alpha_b| R_b) s``. From a time ``lo`` before every contact the step is
 the larger of the two bounds' first zeros (minimum over the features); the
 second-order one is a safe Newton step, so a transversal contact is
 approached quadratically.
@@ -209,7 +214,8 @@ def _signed_distance(wx, wy, geo, row0, n):
 def _evaluate(t, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate, facing, slack):
     """Place both shapes at ``t`` and fill every feature's value and rate.
 
-    ``motion = (dx, dy, dvx, dvy, dax, day)``, ``turn = (theta, omega)``. ``geo``
+    ``motion = (dx, dy, dvx, dvy, dax, day)``, ``turn = (theta, omega, alpha)``: the
+    angle ``theta + omega t + alpha t^2 / 2`` and the spin ``omega + alpha t``. ``geo``
     rows ``0 .. n_a-1`` hold a (none for a circle), the next ``n_b`` rows b.
     Features ``0 .. n_a-1`` (one, the centre, for a circle) are a's points
     against b, the rest b's vertices against a. ``facing[f]`` is the centroids'
@@ -219,16 +225,20 @@ def _evaluate(t, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, ra
     the only case that uses ``facing``). Returns ``D(t)`` and ``D'(t)``.
     """
     dx, dy, dvx, dvy, dax, day = motion
-    theta_a, omega_a = turn_a
-    theta_b, omega_b = turn_b
+    theta_a, omega_a, alpha_a = turn_a
+    theta_b, omega_b, alpha_b = turn_b
+    angle_a = theta_a + (omega_a + 0.5 * alpha_a * t) * t
+    angle_b = theta_b + (omega_b + 0.5 * alpha_b * t) * t
+    omega_a = omega_a + alpha_a * t
+    omega_b = omega_b + alpha_b * t
     ox = dx + (dvx + 0.5 * dax * t) * t
     oy = dy + (dvy + 0.5 * day * t) * t
     vx = dvx + dax * t
     vy = dvy + day * t
     rows_a = 0 if circle else n_a
     if not circle:
-        _place(outline, start_a, n_a, theta_a + omega_a * t, geo, 0)
-    _place(outline, start_b, n_b, theta_b + omega_b * t, geo, rows_a)
+        _place(outline, start_a, n_a, angle_a, geo, 0)
+    _place(outline, start_b, n_b, angle_b, geo, rows_a)
     if circle:
         sd, x, y, ux, uy, slack[0] = _signed_distance(ox, oy, geo, 0, n_b)
         value[0] = sd - radius
@@ -300,14 +310,14 @@ def _rate_at(px, py, nx, ny, ox, oy, vx, vy, omega_a, omega_b):
 
 
 @njit(cache=True)
-def press_rate(px, py, nx, ny, ox, oy, vx, vy, ax, ay, omega_a, omega_b, omega_face, bend):
+def press_rate(px, py, nx, ny, ox, oy, vx, vy, ax, ay, omega_a, omega_b, omega_face, bend, alpha_a=0.0, alpha_b=0.0):
     """Second derivative of the gap at a contact point ``p`` with normal ``n`` (b towards
     a) while the two touch: negative when the contact is being pressed shut.
 
     ``p`` and ``o = D`` are relative to b's centroid, ``v = D'``, ``a = D''``;
     ``u`` and ``A`` below are the relative velocity and acceleration of the
-    material points at ``p`` (a's minus b's, centripetal terms included). The
-    normal turns in one of two ways:
+    material points at ``p`` (a's minus b's, centripetal terms and those of the
+    angular accelerations ``alpha`` included). The normal turns in one of two ways:
 
     - with a face, ``n`` its normal and ``omega_face`` the spin of the body
       that owns it: ``g'' = 2 omega_face (J n) . u + n . A``;
@@ -323,8 +333,8 @@ def press_rate(px, py, nx, ny, ox, oy, vx, vy, ax, ay, omega_a, omega_b, omega_f
     ry = py - oy
     ux = vx - omega_a * ry + omega_b * py
     uy = vy + omega_a * rx - omega_b * px
-    acx = ax - omega_a * omega_a * rx + omega_b * omega_b * px
-    acy = ay - omega_a * omega_a * ry + omega_b * omega_b * py
+    acx = ax - omega_a * omega_a * rx + omega_b * omega_b * px - alpha_a * ry + alpha_b * py
+    acy = ay - omega_a * omega_a * ry + omega_b * omega_b * py + alpha_a * rx - alpha_b * px
     slip = -ny * ux + nx * uy
     return 2.0 * omega_face * slip + nx * acx + ny * acy + bend * slip * slip
 
@@ -333,8 +343,8 @@ def press_rate(px, py, nx, ny, ox, oy, vx, vy, ax, ay, omega_a, omega_b, omega_f
 def press_noise(accel, speed, spin_a, spin_b, reach_a, reach_b, still, bend):
     """Rounding of ``press_rate``: a curvature within this of 0 is neither pressed nor free.
 
-    ``accel`` and ``speed`` are the magnitudes of the relative acceleration and
-    velocity, ``spin`` the absolute angular velocities, ``reach`` the bounding
+    ``accel`` and ``speed`` are the magnitudes of the relative acceleration (the
+    angular accelerations' ``|alpha| R`` included) and velocity, ``spin`` the absolute angular velocities, ``reach`` the bounding
     radii (0 and 0 for a circle a, whose spin does not count), ``bend`` as in
     ``press_rate``, ``still`` the rounding of the contact's velocities
     (``pge.core.predict.still_speed``), which the turning normal multiplies
@@ -497,6 +507,8 @@ def rotating_search(
     horizon,
     budget,
     still=0.0,
+    alpha_a=0.0,
+    alpha_b=0.0,
 ):
     """First contact of a (circle or polygon) with polygon b, both rotating: ``(t, feature, iterations)``.
 
@@ -510,8 +522,12 @@ def rotating_search(
     ``budget`` iterations did not suffice (no contact before ``t`` then).
     ``iterations`` counts the conservative-advancement steps taken. A touching
     pair whose normal rate is within ``still`` (or the search's own rounding
-    estimate, if larger) is not approaching.
+    estimate, if larger) is not approaching. ``alpha_a``, ``alpha_b``: constant
+    angular accelerations (a's is ignored for a circle); the spins at ``t`` are
+    ``omega + alpha t``.
     """
+    if circle:
+        alpha_a = 0.0
     rows_a = 0 if circle else n_a
     count = 1 if circle else n_a + n_b
     front = 1 if circle else n_a  # features of a's points against b
@@ -526,15 +542,17 @@ def rotating_search(
     scale = reach_a + reach_b + radius
     tie = _TIE * scale
     accel = math.hypot(dax, day)
+    # The spins change at |alpha| at most: corners speed up by |alpha| R, and the
+    # normals' turning rate by |alpha|, which the bounds below add.
     spin_a = abs(omega_a) if not circle else 0.0
     spin_b = abs(omega_b)
     spin = spin_a * reach_a + spin_b * reach_b
-    # curvature bounds: base + slope * (largest signed distance over the window)
-    swing_a = spin_a * spin_a * reach_a
-    swing_b = spin_b * spin_b * reach_b
+    twist_a = abs(alpha_a)
+    twist_b = abs(alpha_b)
+    twist = twist_a * reach_a + twist_b * reach_b
     motion = (dx, dy, dvx, dvy, dax, day)
-    turn_a = (theta_a, omega_a)
-    turn_b = (theta_b, omega_b)
+    turn_a = (theta_a, omega_a, alpha_a)
+    turn_b = (theta_b, omega_b, alpha_b)
 
     ox, oy, vx, vy = _evaluate(
         0.0, motion, outline, start_a, n_a, turn_a, start_b, n_b, turn_b, radius, circle, geo, value, rate, facing, slack
@@ -558,16 +576,20 @@ def rotating_search(
             )
             if feature >= 0:  # the centre against b's face
                 bend = 0.0
-                curvature = press_rate(ox, oy, nx, ny, ox, oy, vx, vy, dax, day, 0.0, omega_b, omega_b, bend)
+                curvature = press_rate(
+                    ox, oy, nx, ny, ox, oy, vx, vy, dax, day, 0.0, omega_b, omega_b, bend, 0.0, alpha_b
+                )
             else:  # the centre round b's corner
                 bend = 1.0 / radius
-                curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, 0.0, omega_b, 0.0, bend)
+                curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, 0.0, omega_b, 0.0, bend, 0.0, alpha_b)
         else:
             px, py, nx, ny, approach = _patch(geo, n_a, n_b, ox, oy, vx, vy, omega_a, omega_b, face, tie)
             feature = face
             bend = 0.0
             omega_face = omega_b if face < n_b else omega_a
-            curvature = press_rate(px, py, nx, ny, ox, oy, vx, vy, dax, day, omega_a, omega_b, omega_face, bend)
+            curvature = press_rate(
+                px, py, nx, ny, ox, oy, vx, vy, dax, day, omega_a, omega_b, omega_face, bend, alpha_a, alpha_b
+            )
         # A rate that is only rounding (a corner at the end of its sweep) is no approach:
         # reporting it would start an endless run of zero-time contacts.
         still = max(still, _STILL * (math.hypot(dvx, dvy) + spin))
@@ -575,7 +597,7 @@ def rotating_search(
             return 0.0, feature, 0
         # Touching, not separating and pressed shut (gravity on a corner): a contact now,
         # or the shapes would sink into each other unseen.
-        pressing = press_noise(accel, math.hypot(dvx, dvy), spin_a, spin_b, reach_a, reach_b, still, bend)
+        pressing = press_noise(accel + twist, math.hypot(dvx, dvy), spin_a, spin_b, reach_a, reach_b, still, bend)
         if approach <= still and curvature < -pressing:
             return 0.0, feature, 0
         # Touching and not approaching: the contact now ending is no new one.
@@ -591,8 +613,11 @@ def rotating_search(
     found = False
     while iterations < budget:
         iterations += 1
-        angle_a = theta_a + omega_a * lo
-        angle_b = theta_b + omega_b * lo
+        angle_a = theta_a + (omega_a + 0.5 * alpha_a * lo) * lo
+        angle_b = theta_b + (omega_b + 0.5 * alpha_b * lo) * lo
+        spin_a = abs(omega_a + alpha_a * lo) if not circle else 0.0
+        spin_b = abs(omega_b + alpha_b * lo)
+        spin = spin_a * reach_a + spin_b * reach_b
         noise = _rounding(scale, angle_a, angle_b, motion, lo)
         eps = _TOUCH * noise
         margin = _MARGIN * noise
@@ -629,11 +654,21 @@ def rotating_search(
         reach = _INF
         rest_a = _INF
         rest_b = _INF
+        top_a = spin_a
+        top_b = spin_b
         if bounded:
+            # the largest spins over the window, and the curvature bounds' parts that do
+            # not grow with the signed distance (module docstring, "Bound")
+            top_a = spin_a + twist_a * h
+            top_b = spin_b + twist_b * h
             fastest = speed + accel * h
-            reach = fastest + spin  # bound on every |g'| over the window
-            rest_a = swing_a + 2.0 * spin_b * (fastest + spin_a * reach_a) + spin_b * spin_b * reach_b
-            rest_b = swing_b + 2.0 * spin_a * (fastest + spin_b * reach_b) + spin_a * spin_a * reach_a
+            reach = fastest + top_a * reach_a + top_b * reach_b  # bound on every |g'| over the window
+            rest_a = (
+                top_a * top_a * reach_a + 2.0 * top_b * (fastest + top_a * reach_a) + top_b * top_b * reach_b + twist
+            )
+            rest_b = (
+                top_b * top_b * reach_b + 2.0 * top_a * (fastest + top_b * reach_b) + top_a * top_a * reach_a + twist
+            )
         step = _INF
         for f in range(count):
             curvature = _INF
@@ -642,25 +677,28 @@ def rotating_search(
             widest = 0.0
             if bounded:
                 widest = max(value[f] + radius, 0.0) + reach * h
-                turn = spin_b if f < front else spin_a  # the spin of the body f is measured against
+                # the spin of the body f is measured against, and its angular acceleration
+                turn = top_b if f < front else top_a
+                twist_f = twist_b if f < front else twist_a
                 rest = rest_a if f < front else rest_b
-                curvature = accel + rest + turn * turn * widest
+                bent = (turn * turn + twist_f) * widest
+                curvature = accel + rest + bent
                 flat = curvature
                 if slack[f] >= 0.0:
                     # Beside a face: the face's plane distance is a lower bound of the gap for
                     # all time, bent only by the acceleration along its normal (which turns by
                     # at most turn * h over the window) and by the spins.
-                    flat = rest + turn * turn * widest + min(accel, max(0.0, accel * turn * h - facing[f]))
+                    flat = rest + bent + min(accel, max(0.0, accel * turn * h - facing[f]))
             if band[f]:
-                s = _band_step(value[f], rate[f], curvature, eps, speed + spin, accel, h, bounded)
+                s = _band_step(value[f], rate[f], curvature, eps, speed + spin, accel + twist, h, bounded)
                 if flat < curvature:
                     # While the point stays beside the face, the gap near zero is the plane
                     # distance itself, so its milder bend bounds the excursion too.
                     beside = slack[f] / (reach + turn * widest)
-                    milder = _band_step(value[f], rate[f], flat, eps, speed + spin, accel, h, bounded)
+                    milder = _band_step(value[f], rate[f], flat, eps, speed + spin, accel + twist, h, bounded)
                     s = max(s, min(beside, milder))
             else:
-                s = lipschitz_step(value[f] - margin, speed + spin, accel)
+                s = lipschitz_step(value[f] - margin, speed + spin, accel + twist)
                 if bounded:
                     s = max(s, min(h, curvature_step(value[f] - margin, rate[f], flat)))
             step = min(step, s)
@@ -694,7 +732,8 @@ def rotating_search(
         )
     if not found:
         return lo, CHECKPOINT, iterations
-    return lo, _feature(geo, ox, oy, radius, outline, start_b, n_a, n_b, theta_b + omega_b * lo, circle), iterations
+    angle_b = theta_b + (omega_b + 0.5 * alpha_b * lo) * lo
+    return lo, _feature(geo, ox, oy, radius, outline, start_b, n_a, n_b, angle_b, circle), iterations
 
 
 @njit(cache=True)
@@ -713,12 +752,12 @@ def _feature(geo, ox, oy, radius, outline, start_b, n_a, n_b, angle_b, circle):
 
 
 @njit(cache=True)
-def rotating_circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, theta0, omega, horizon, still=0.0):
+def rotating_circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, theta0, omega, horizon, still=0.0, alpha=0.0):
     """First contact of a circle (a) and a translating, rotating convex polygon (b).
 
     ``(px, py)``, ``(vx, vy)``, ``(ax, ay)``: the circle's centre, velocity and
     acceleration relative to the polygon's centroid (world axes); the polygon
-    is outline rows ``start .. start + n - 1`` at angle ``theta0 + omega t``.
+    is outline rows ``start .. start + n - 1`` at angle ``theta0 + omega t + alpha t^2 / 2``.
     Returns ``(t, feature)``: ``t`` = inf for no contact within ``[0, horizon]``,
     0.0 for touching-and-approaching now (rotation included), else at most
     about 1e-12 s before the first contact and never after it. Feature: edge
@@ -727,7 +766,7 @@ def rotating_circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, t
     Touching shapes closing slower than ``still`` (at least the search's own
     rounding estimate; ``pge.core.predict.still_speed``) are not approaching.
     """
-    if omega == 0.0:
+    if omega == 0.0 and alpha == 0.0:
         c = math.cos(theta0)
         s = math.sin(theta0)
         return circle_polygon(
@@ -746,7 +785,7 @@ def rotating_circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, t
         )
     t, feature, _ = rotating_search(
         px, py, vx, vy, ax, ay, outline, 0, 0, 0.0, 0.0, start, n, theta0, omega, radius, True, horizon, MAX_ITERATIONS,
-        still,
+        still, 0.0, alpha,
     )
     return t, feature
 
@@ -754,19 +793,19 @@ def rotating_circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, t
 @njit(cache=True)
 def rotating_polygon_polygon(
     dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, theta_a, omega_a, start_b, n_b, theta_b, omega_b, horizon,
-    still=0.0,
+    still=0.0, alpha_a=0.0, alpha_b=0.0,
 ):
     """First contact of two translating, rotating convex polygons within ``[0, horizon]``.
 
     ``d, dv, da``: offset, velocity and acceleration of a's centroid relative
     to b's (world axes); each polygon is outline rows ``start .. start + n - 1``
-    at angle ``theta + omega t``. Returns ``(t, feature)`` with ``t`` as in
+    at angle ``theta + omega t + alpha t^2 / 2``. Returns ``(t, feature)`` with ``t`` as in
     ``rotating_circle_polygon``; feature ``k < n_b``: edge ``k`` of b struck by a
     vertex of a, ``n_b + k``: edge ``k`` of a struck by a vertex of b;
     ``CHECKPOINT`` if the search budget ran out. ``still`` as in
     ``rotating_circle_polygon``.
     """
-    if omega_a == 0.0 and omega_b == 0.0:
+    if omega_a == 0.0 and omega_b == 0.0 and alpha_a == 0.0 and alpha_b == 0.0:
         if theta_a == 0.0 and theta_b == 0.0:
             return polygon_polygon(dx, dy, dvx, dvy, dax, day, outline, start_a, n_a, start_b, n_b, horizon, still)
         # Work in b's frame, where a is turned by theta_a - theta_b.
@@ -811,6 +850,8 @@ def rotating_polygon_polygon(
         horizon,
         MAX_ITERATIONS,
         still,
+        alpha_a,
+        alpha_b,
     )
     return t, feature
 
