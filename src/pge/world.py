@@ -455,6 +455,8 @@ class World:
             F[i, L.FREE_AY] = F[i, L.OWN_AY] + F[i, L.SPRING_AY] + self._gravity[1]
         F[i, L.AX] = F[i, L.FREE_AX]
         F[i, L.AY] = F[i, L.FREE_AY]
+        if self._islands is not None:
+            F[i, L.ALPHA] = 0.0  # an island's contact forces are planned again at its next step
 
     def _release(self, i: int) -> list[int]:
         """Release body ``i`` from resting contact, and every body resting on it; returns

@@ -1,20 +1,30 @@
 """One step of an island: its contacts solved together, compiled.
 
 Between steps every body of an island flies in closed form like any other body (constant
-acceleration, constant spin), so its contacts with bodies outside the island are predicted
-exactly. At a step, at time ``t``, the island's contacts (``pge.contact.manifold``: every pair
-of its bodies, and each body with the fixed bodies near it, closer than the step's travel) are
-solved together by sequential impulses with Coulomb friction, on the bodies' *mean* velocities
-over the coming step ``v + h a / 2``: a contact closing no faster than its gap over ``h`` is
-left alone (speculative), a touching one stops closing (sticking, or sliding at the friction
-cone's edge), an overlapping one is pushed out by ``PUSH_RATE`` of its depth. Since positions
-over the step are exact, a body held on a face starts each step rising at ``h |a| / 2`` and
-lands at its end: a hop of ``h^2 |a| / 8``, reversed without loss at every step.
+acceleration, constant angular acceleration), so its contacts with bodies outside the island
+are predicted exactly. At a step, at time ``t``, the island's contacts (``pge.contact.manifold``:
+every pair of its bodies, and each body with the fixed bodies near it, closer than the step's
+travel) are solved together with Coulomb friction, in two stages:
 
-Stages: ``_start`` (bodies to ``t``, mean velocities, travel margins), ``_collect`` (the
+* **impacts**: impulses on the velocities now, inelastic (a touching point stops closing, or
+  bounces if it would bounce higher than the rest height; a point with a gap may close by it
+  within the step and no faster);
+* **forces**: the contact forces over the coming step, each constant, found as impulses on
+  the velocities at the step's *end* (``v + h a`` without them): a touching point stops
+  closing, a gap closes by itself at most, an overlap is pushed out by ``PUSH_RATE`` of its
+  depth, a sticking pair stops sliding, a sliding one takes ``mu`` times its normal force.
+  The forces become each body's acceleration and angular acceleration until the next step,
+  so a point's normal speed is linear over the step and a body held still has velocity and
+  acceleration exactly zero: a contact that holds does no work.
+
+Each stage is a complementarity problem, solved by sequential impulses (projected
+Gauss-Seidel) and, where 16 sweeps do not converge, exactly by Lemke's method
+(``pge.numerics.lcp``) on Stewart and Trinkle's formulation.
+
+Stages: ``_start`` (bodies to ``t``, velocities now, travel margins), ``_collect`` (the
 manifold), ``_prepare`` (lever arms, effective masses, targets, last step's impulses),
-``_solve`` (the sweeps), ``_finish`` (velocities back from mean ones, the energy guard, the
-island's parts and the bodies that left it, the touch).
+``_impacts``, ``_end_targets`` and ``_solve`` (the forces), ``_finish`` (accelerations from
+the forces, the island's parts and the bodies that left it, the touch).
 """
 
 from __future__ import annotations
@@ -41,12 +51,13 @@ from pge.core.contact import combine
 from pge.core.engine import touch
 from pge.core.grid import gather
 from pge.core.motion import advance, orient
-from pge.numerics.linalg import solve_spd
+from pge.numerics.lcp import lemke
 from pge.core.tuning import (
     CONTACT_MARGIN,
-    POLISH_LIMIT,
     FACE_HYSTERESIS,
+    IMPACT_ITERATIONS,
     ISLAND_ITERATIONS,
+    LCP_LIMIT,
     PUSH_RATE,
     SOLVE_TOLERANCE,
     TOUCHING,
@@ -54,8 +65,8 @@ from pge.core.tuning import (
 
 CIRCLE = 0
 # columns of the solver's contact rows, after the manifold's
-RAX, RAY, RBX, RBY, KN, KT, TARGET, LAMBDA_N, LAMBDA_T, MU = range(NCOLUMNS, NCOLUMNS + 10)
-NSOLVE = NCOLUMNS + 10
+RAX, RAY, RBX, RBY, KN, KT, TARGET, LAMBDA_N, LAMBDA_T, MU, IMPACT = range(NCOLUMNS, NCOLUMNS + 11)
+NSOLVE = NCOLUMNS + 11
 # the warm-start key of a contact: (body a, body b, manifold key) in one integer
 _BODY_BITS = 21
 _KEY_BITS = 16
@@ -63,26 +74,26 @@ _KEY_BITS = 16
 
 @njit(cache=True)
 def _start(S, members, local, h, t):
-    """Bodies to ``t``, outlines turned; mean velocities ``(vx, vy, spin)`` over the step and
-    each body's travel margin."""
+    """Bodies to ``t`` (under the last step's contact forces), outlines turned; velocities
+    now ``(vx, vy, spin)`` and each body's travel margin over a step of free flight."""
     F = S[0]
     I = S[1]
     m = members.shape[0]
-    mean = np.empty((m, 3))
+    now = np.empty((m, 3))
     margin = np.empty(m)
     for k in range(m):
         i = members[k]
         local[i] = k
         advance(F, i, t)
         orient(F, I, S[2], S[18], i, t)
-        ax = F[i, L.AX]
-        ay = F[i, L.AY]
-        mean[k, 0] = F[i, L.VX] + 0.5 * h * ax
-        mean[k, 1] = F[i, L.VY] + 0.5 * h * ay
-        mean[k, 2] = F[i, L.OMEGA]
-        travel = math.hypot(mean[k, 0], mean[k, 1]) + abs(mean[k, 2]) * F[i, L.REACH]
+        ax = F[i, L.FREE_AX]
+        ay = F[i, L.FREE_AY]
+        now[k, 0] = F[i, L.VX]
+        now[k, 1] = F[i, L.VY]
+        now[k, 2] = F[i, L.OMEGA]
+        travel = math.hypot(now[k, 0] + 0.5 * h * ax, now[k, 1] + 0.5 * h * ay) + abs(now[k, 2]) * F[i, L.REACH]
         margin[k] = h * travel + 0.125 * h * h * math.hypot(ax, ay)
-    return mean, margin
+    return now, margin
 
 
 @njit(cache=True)
@@ -204,19 +215,24 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
             target = -separation / h  # may close by its gap, no more
         else:
             target = -PUSH_RATE * separation / h
+        rows[c, TARGET] = target
+        # The impact stage, on the velocities now: a touching point stops closing, or
+        # bounces if it closes fast enough to bounce higher than the rest height; a point
+        # with a gap may close by it within the step, no faster.
         reach = min(F[i, L.REACH], F[j, L.REACH])
         if separation <= TOUCHING * reach:
-            # Velocities now (not mean ones): a touching contact closing fast enough to bounce
-            # higher than the rest height bounces.
             ux = F[i, L.VX] - F[i, L.OMEGA] * ray - (F[j, L.VX] - F[j, L.OMEGA] * rby)
             uy = F[i, L.VY] + F[i, L.OMEGA] * rax - (F[j, L.VY] + F[j, L.OMEGA] * rbx)
             closing = -(ux * nx + uy * ny)
             e = combine(F[i, L.ELASTICITY], F[j, L.ELASTICITY], Q[L.RULE])
-            pressing = max(math.hypot(F[i, L.AX], F[i, L.AY]), math.hypot(F[j, L.AX], F[j, L.AY]))
+            pressing = max(math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]), math.hypot(F[j, L.FREE_AX], F[j, L.FREE_AY]))
             bounce = e * closing
+            impact = 0.0
             if closing > 0.0 and bounce * bounce > 2.0 * pressing * rest_height * reach:
-                target = max(target, bounce)
-        rows[c, TARGET] = target
+                impact = bounce
+        else:
+            impact = -separation / h
+        rows[c, IMPACT] = impact
         key = _contact_key(i, j, np.int64(rows[c, KEY]))
         keys[c] = key
         rows[c, LAMBDA_N] = 0.0
@@ -230,49 +246,49 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
 
 
 @njit(cache=True, inline="always")
-def _push_at(F, mean, pairs, c, jx, jy, rax, ray, rbx, rby):
+def _push_at(F, vel, pairs, c, jx, jy, rax, ray, rbx, rby):
     """Apply the impulse ``(jx, jy)`` at lever arms ``ra`` (first body) and ``rb`` (second,
-    which takes it reversed; a fixed body does not move) to the mean velocities of row
+    which takes it reversed; a fixed body does not move) to the velocities ``vel`` of row
     ``c``'s two bodies."""
     ka = pairs[c, 0]
     i = pairs[c, 2]
-    mean[ka, 0] += jx * F[i, L.INV_MASS]
-    mean[ka, 1] += jy * F[i, L.INV_MASS]
-    mean[ka, 2] += (rax * jy - ray * jx) * F[i, L.INV_INERTIA]
+    vel[ka, 0] += jx * F[i, L.INV_MASS]
+    vel[ka, 1] += jy * F[i, L.INV_MASS]
+    vel[ka, 2] += (rax * jy - ray * jx) * F[i, L.INV_INERTIA]
     kb = pairs[c, 1]
     if kb >= 0:
         j = pairs[c, 3]
-        mean[kb, 0] -= jx * F[j, L.INV_MASS]
-        mean[kb, 1] -= jy * F[j, L.INV_MASS]
-        mean[kb, 2] -= (rbx * jy - rby * jx) * F[j, L.INV_INERTIA]
+        vel[kb, 0] -= jx * F[j, L.INV_MASS]
+        vel[kb, 1] -= jy * F[j, L.INV_MASS]
+        vel[kb, 2] -= (rbx * jy - rby * jx) * F[j, L.INV_INERTIA]
 
 
 @njit(cache=True, inline="always")
-def _push(F, mean, pairs, rows, c, jn, jt):
+def _push(F, vel, pairs, rows, c, jn, jt):
     """Apply impulse ``jn`` along the normal and ``jt`` along the tangent at row ``c``'s point."""
     nx = rows[c, NX]
     ny = rows[c, NY]
-    _push_at(F, mean, pairs, c, jn * nx - jt * ny, jn * ny + jt * nx, rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY])
+    _push_at(F, vel, pairs, c, jn * nx - jt * ny, jn * ny + jt * nx, rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY])
 
 
 @njit(cache=True, inline="always")
-def _relative_at(mean, pairs, c, rax, ray, rbx, rby):
-    """Relative mean velocity (first body minus second) of row ``c``'s bodies at lever arms
+def _relative_at(vel, pairs, c, rax, ray, rbx, rby):
+    """Relative velocity in ``vel`` (first body minus second) of row ``c``'s bodies at lever arms
     ``ra`` and ``rb``."""
     ka = pairs[c, 0]
     kb = pairs[c, 1]
-    ux = mean[ka, 0] - mean[ka, 2] * ray
-    uy = mean[ka, 1] + mean[ka, 2] * rax
+    ux = vel[ka, 0] - vel[ka, 2] * ray
+    uy = vel[ka, 1] + vel[ka, 2] * rax
     if kb >= 0:
-        ux -= mean[kb, 0] - mean[kb, 2] * rby
-        uy -= mean[kb, 1] + mean[kb, 2] * rbx
+        ux -= vel[kb, 0] - vel[kb, 2] * rby
+        uy -= vel[kb, 1] + vel[kb, 2] * rbx
     return ux, uy
 
 
 @njit(cache=True, inline="always")
-def _relative(mean, pairs, rows, c):
-    """Relative mean velocity of row ``c``'s contact point (first body minus second)."""
-    return _relative_at(mean, pairs, c, rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY])
+def _relative(vel, pairs, rows, c):
+    """Relative velocity in ``vel`` of row ``c``'s contact point (first body minus second)."""
+    return _relative_at(vel, pairs, c, rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY])
 
 
 @njit(cache=True, inline="always")
@@ -288,36 +304,36 @@ def _midpoint(rows, c):
 
 
 @njit(cache=True, inline="always")
-def _friction(F, mean, rows, pairs, c):
+def _friction(F, vel, rows, pairs, c):
     """Row ``c``'s friction impulse, within the cone of its normal impulse; returns its change."""
     if not (rows[c, KT] > 0.0 and rows[c, MU] > 0.0):
         return 0.0
-    ux, uy = _relative(mean, pairs, rows, c)
+    ux, uy = _relative(vel, pairs, rows, c)
     ut = -ux * rows[c, NY] + uy * rows[c, NX]
     limit = rows[c, MU] * rows[c, LAMBDA_N]
     old = rows[c, LAMBDA_T]
     new = min(max(old - ut / rows[c, KT], -limit), limit)
     rows[c, LAMBDA_T] = new
-    _push(F, mean, pairs, rows, c, 0.0, new - old)
+    _push(F, vel, pairs, rows, c, 0.0, new - old)
     return abs(new - old)
 
 
 @njit(cache=True, inline="always")
-def _normal(F, mean, rows, pairs, c):
+def _normal(F, vel, rows, pairs, c):
     """Row ``c``'s normal impulse alone (never pulling); returns its change."""
     if not rows[c, KN] > 0.0:
         return 0.0
-    ux, uy = _relative(mean, pairs, rows, c)
+    ux, uy = _relative(vel, pairs, rows, c)
     un = ux * rows[c, NX] + uy * rows[c, NY]
     old = rows[c, LAMBDA_N]
     new = max(old + (rows[c, TARGET] - un) / rows[c, KN], 0.0)
     rows[c, LAMBDA_N] = new
-    _push(F, mean, pairs, rows, c, new - old, 0.0)
+    _push(F, vel, pairs, rows, c, new - old, 0.0)
     return abs(new - old)
 
 
 @njit(cache=True)
-def _friction_pair(F, mean, rows, pairs, c):
+def _friction_pair(F, vel, rows, pairs, c):
     """The friction of a pair's two points (rows ``c`` and ``c + 1``) as one impulse at their
     midpoint, within the cone of their summed normal impulses: the two points' tangential
     constraints are one (the pair slides or sticks as a whole), and solving them apart makes
@@ -336,19 +352,19 @@ def _friction_pair(F, mean, rows, pairs, c):
     kt = F[i, L.INV_MASS] + F[j, L.INV_MASS] + F[i, L.INV_INERTIA] * rat * rat + F[j, L.INV_INERTIA] * rbt * rbt
     if not (kt > 0.0 and mu > 0.0):
         return 0.0
-    ux, uy = _relative_at(mean, pairs, c, rax, ray, rbx, rby)
+    ux, uy = _relative_at(vel, pairs, c, rax, ray, rbx, rby)
     ut = ux * tx + uy * ty
     limit = mu * (rows[c, LAMBDA_N] + rows[d, LAMBDA_N])
     old = rows[c, LAMBDA_T] + rows[d, LAMBDA_T]
     new = min(max(old - ut / kt, -limit), limit)
     rows[c, LAMBDA_T] = new
     rows[d, LAMBDA_T] = 0.0
-    _push_at(F, mean, pairs, c, (new - old) * tx, (new - old) * ty, rax, ray, rbx, rby)
+    _push_at(F, vel, pairs, c, (new - old) * tx, (new - old) * ty, rax, ray, rbx, rby)
     return abs(new - old)
 
 
 @njit(cache=True)
-def _normal_pair(F, mean, rows, pairs, c):
+def _normal_pair(F, vel, rows, pairs, c):
     """The normal impulses of rows ``c`` and ``c + 1`` (two points of one pair, sharing a
     normal) solved together: the 2x2 complementarity problem ``u = K x + b >= target``,
     ``x >= 0``, ``x (u - target) = 0``, by trying its four cases (both pushing, one, none).
@@ -366,10 +382,10 @@ def _normal_pair(F, mean, rows, pairs, c):
     k12 += F[j, L.INV_INERTIA] * (rows[c, RBX] * ny - rows[c, RBY] * nx) * (rows[d, RBX] * ny - rows[d, RBY] * nx)
     det = k11 * k22 - k12 * k12
     if not (k11 > 0.0 and k22 > 0.0 and det > 1e-6 * k11 * k22):
-        return max(_normal(F, mean, rows, pairs, c), _normal(F, mean, rows, pairs, d))
-    ux, uy = _relative(mean, pairs, rows, c)
+        return max(_normal(F, vel, rows, pairs, c), _normal(F, vel, rows, pairs, d))
+    ux, uy = _relative(vel, pairs, rows, c)
     u1 = ux * nx + uy * ny
-    ux, uy = _relative(mean, pairs, rows, d)
+    ux, uy = _relative(vel, pairs, rows, d)
     u2 = ux * nx + uy * ny
     a1 = rows[c, LAMBDA_N]
     a2 = rows[d, LAMBDA_N]
@@ -388,21 +404,24 @@ def _normal_pair(F, mean, rows, pairs, c):
                 x1 = 0.0
                 x2 = 0.0
                 if not (b1 >= 0.0 and b2 >= 0.0):
-                    return max(_normal(F, mean, rows, pairs, c), _normal(F, mean, rows, pairs, d))
+                    return max(_normal(F, vel, rows, pairs, c), _normal(F, vel, rows, pairs, d))
     rows[c, LAMBDA_N] = x1
     rows[d, LAMBDA_N] = x2
-    _push(F, mean, pairs, rows, c, x1 - a1, 0.0)
-    _push(F, mean, pairs, rows, d, x2 - a2, 0.0)
+    _push(F, vel, pairs, rows, c, x1 - a1, 0.0)
+    _push(F, vel, pairs, rows, d, x2 - a2, 0.0)
     return max(abs(x1 - a1), abs(x2 - a2))
 
 
 @njit(cache=True)
-def _solve(F, mean, rows, pairs, count, speed, down_x, down_y):
+def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most):
     """Sequential impulses over the pairs: the warm start, then sweeps, each pair taking
     friction at its points (within the cone of their normal impulses) then its normal
     impulses (never pulling; a pair's two points together, ``_normal_pair``), until no
-    point's speed is off by more than ``SOLVE_TOLERANCE`` times ``speed`` (``_residual``), or
-    for at most ``ISLAND_ITERATIONS`` sweeps. Returns the number of sweeps."""
+    point's speed is off by more than ``SOLVE_TOLERANCE`` times ``speed`` (``_residual``).
+    Sweeps converge slowly on tall stacks and piles (their rate falls with the square of the
+    height), so after 16 that did not the problem is solved exactly (``_exact``); where that
+    cannot be done, the sweeps go on, for at most ``most`` in all. Returns the number of
+    sweeps."""
     starts, sizes, blocks = _blocks(pairs, count)
     # Sweep the pairs in order of height against the acceleration (bottom to top, then back):
     # in a stack, a load then passes all the way down, and the reactions all the way up, in
@@ -416,22 +435,22 @@ def _solve(F, mean, rows, pairs, count, speed, down_x, down_y):
     sizes = sizes[order]
     for b in range(blocks):
         c = starts[b]
-        _push(F, mean, pairs, rows, c, rows[c, LAMBDA_N], 0.0)
+        _push(F, vel, pairs, rows, c, rows[c, LAMBDA_N], 0.0)
         if sizes[b] == 2:
             d = c + 1
-            _push(F, mean, pairs, rows, d, rows[d, LAMBDA_N], 0.0)
+            _push(F, vel, pairs, rows, d, rows[d, LAMBDA_N], 0.0)
             total = rows[c, LAMBDA_T] + rows[d, LAMBDA_T]
             limit = rows[c, MU] * (rows[c, LAMBDA_N] + rows[d, LAMBDA_N])
             total = min(max(total, -limit), limit)
             rows[c, LAMBDA_T] = total
             rows[d, LAMBDA_T] = 0.0
             rax, ray, rbx, rby = _midpoint(rows, c)
-            _push_at(F, mean, pairs, c, -total * rows[c, NY], total * rows[c, NX], rax, ray, rbx, rby)
+            _push_at(F, vel, pairs, c, -total * rows[c, NY], total * rows[c, NX], rax, ray, rbx, rby)
         else:
             limit = rows[c, MU] * rows[c, LAMBDA_N]
             rows[c, LAMBDA_T] = min(max(rows[c, LAMBDA_T], -limit), limit)
-            _push(F, mean, pairs, rows, c, 0.0, rows[c, LAMBDA_T])
-    for sweep in range(ISLAND_ITERATIONS):
+            _push(F, vel, pairs, rows, c, 0.0, rows[c, LAMBDA_T])
+    for sweep in range(most):
         change = 0.0
         for q in range(blocks):
             # Sweeps alternate direction (symmetric Gauss-Seidel): a load passes down a
@@ -439,16 +458,16 @@ def _solve(F, mean, rows, pairs, count, speed, down_x, down_y):
             b = q if sweep % 2 == 0 else blocks - 1 - q
             c = starts[b]
             if sizes[b] == 2:
-                change = max(change, _friction_pair(F, mean, rows, pairs, c))
-                change = max(change, _normal_pair(F, mean, rows, pairs, c))
+                change = max(change, _friction_pair(F, vel, rows, pairs, c))
+                change = max(change, _normal_pair(F, vel, rows, pairs, c))
             else:
-                change = max(change, _friction(F, mean, rows, pairs, c))
-                change = max(change, _normal(F, mean, rows, pairs, c))
-        if change == 0.0 or _residual(mean, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
+                change = max(change, _friction(F, vel, rows, pairs, c))
+                change = max(change, _normal(F, vel, rows, pairs, c))
+        if change == 0.0 or _residual(vel, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
             return sweep + 1
-        if sweep % 16 == 15 and _polish(F, mean, rows, pairs, count, starts, sizes, blocks, speed):
+        if sweep == 15 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
             return sweep + 1
-    return ISLAND_ITERATIONS
+    return most
 
 
 @njit(cache=True, inline="always")
@@ -460,80 +479,85 @@ def _arms(rows, c, size):
 
 
 @njit(cache=True)
-def _polish(F, mean, rows, pairs, count, starts, sizes, blocks, speed):
-    """Finish the solve exactly where the sweeps have found which points push and that every
-    pair sticks: solve the equalities of that active set (pushing points reach their target
-    normal speed, sticking pairs stop sliding) as one dense symmetric system ``W d = r``
-    (``W = J M^-1 J^T``), and keep the result only if it is a solution (no pulling impulse,
-    friction within its cone, no other point closing too fast). The sweeps converge slowly on
-    tall stacks and piles (their rate falls with the square of the height); this step does
-    not. Returns whether it was kept (the impulses and mean velocities then hold it)."""
-    size_limit = POLISH_LIMIT
-    kind = np.empty(size_limit, dtype=np.int64)  # 0: normal at row, 1: friction of block
-    index = np.empty(size_limit, dtype=np.int64)
-    n = 0
+def _directions(F, rows, pairs, count, starts, sizes, blocks):
+    """The solve's constraint directions: every row's normal, then the friction (tangent at
+    the point, or at the midpoint of a pair's two points) of every block with friction.
+    Returns ``(ja, jb, body_a, body_b, row, nf)``: each direction's coefficients on its two
+    bodies' ``(vx, vy, spin)`` (``jb`` for the second, reversed), their local indices (-1:
+    fixed), the row it belongs to, and how many friction directions there are."""
+    friction = 0
     for b in range(blocks):
-        c = starts[b]
-        total = 0.0
-        for p in range(c, c + sizes[b]):
-            if rows[p, LAMBDA_N] > 0.0:
-                if n == size_limit:
-                    return False
-                kind[n] = 0
-                index[n] = p
-                n += 1
-                total += rows[p, LAMBDA_N]
-        if rows[c, MU] > 0.0 and total > 0.0:
-            if not abs(rows[c, LAMBDA_T]) < rows[c, MU] * total * (1.0 - 1e-9):
-                return False  # a sliding pair: its friction depends on the normal impulses
-            if n == size_limit:
-                return False
-            kind[n] = 1
-            index[n] = b
-            n += 1
-    if n == 0:
-        return False
-    # Rows of J for the two bodies: (x, y, spin) coefficients, and their local indices.
+        if rows[starts[b], MU] > 0.0:
+            friction += 1
+    n = count + friction
     ja = np.zeros((n, 3))
     jb = np.zeros((n, 3))
     body_a = np.empty(n, dtype=np.int64)
     body_b = np.empty(n, dtype=np.int64)
-    r = np.empty(n)
-    for k in range(n):
-        if kind[k] == 0:
-            c = index[k]
-            dx = rows[c, NX]
-            dy = rows[c, NY]
-            rax, ray, rbx, rby = rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY]
-            target = rows[c, TARGET]
+    row = np.empty(n, dtype=np.int64)
+    k = 0
+    for c in range(count + blocks):
+        if c < count:
+            r = c
+            dx = rows[r, NX]
+            dy = rows[r, NY]
+            rax, ray, rbx, rby = rows[r, RAX], rows[r, RAY], rows[r, RBX], rows[r, RBY]
         else:
-            c = starts[index[k]]
-            dx = -rows[c, NY]
-            dy = rows[c, NX]
-            rax, ray, rbx, rby = _arms(rows, c, sizes[index[k]])
-            target = 0.0
+            r = starts[c - count]
+            if not rows[r, MU] > 0.0:
+                continue
+            dx = -rows[r, NY]
+            dy = rows[r, NX]
+            rax, ray, rbx, rby = _arms(rows, r, sizes[c - count])
         ja[k, 0] = dx
         ja[k, 1] = dy
         ja[k, 2] = rax * dy - ray * dx
         jb[k, 0] = -dx
         jb[k, 1] = -dy
         jb[k, 2] = -(rbx * dy - rby * dx)
-        body_a[k] = pairs[c, 0]
-        body_b[k] = pairs[c, 1]
-        ux, uy = _relative_at(mean, pairs, c, rax, ray, rbx, rby)
-        r[k] = target - (ux * dx + uy * dy)
-    inverse = np.empty((mean.shape[0], 3))
+        body_a[k] = pairs[r, 0]
+        body_b[k] = pairs[r, 1]
+        row[k] = r
+        k += 1
+    return ja, jb, body_a, body_b, row, friction
+
+
+@njit(cache=True)
+def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
+    """Solve the step's contacts exactly: the complementarity problem of Stewart and Trinkle
+    with Coulomb friction (exact in 2D: a pair's friction pushes one way or the other along
+    its tangent), by Lemke's method (``pge.numerics.lcp``). Unknowns: each row's normal
+    impulse ``l >= 0``; each block's friction ``f+ - f-`` (``f+, f- >= 0``) and its sliding
+    speed ``s >= 0``. Conditions: a pushing point reaches its target normal speed and no
+    point closes faster than it; a sliding pair's friction is ``mu`` times its normal
+    impulses, against the slide; a sticking pair stops sliding, within the cone. Replaces the
+    impulses and velocities and returns true when the answer checks out (``_residual``);
+    leaves them alone otherwise (a ray, or too many unknowns: the sweeps go on)."""
+    ja, jb, body_a, body_b, row, nf = _directions(F, rows, pairs, count, starts, sizes, blocks)
+    n = ja.shape[0]
+    size = count + 3 * nf
+    if size > LCP_LIMIT:
+        return False
+    inverse = np.zeros((vel.shape[0], 3))
     for k in range(n):
         for side in range(2):
             x = body_a[k] if side == 0 else body_b[k]
-            i = pairs[index[k] if kind[k] == 0 else starts[index[k]], 2 + side]
             if x >= 0:
+                i = pairs[row[k], 2 + side]
                 inverse[x, 0] = F[i, L.INV_MASS]
                 inverse[x, 1] = F[i, L.INV_MASS]
                 inverse[x, 2] = F[i, L.INV_INERTIA]
+    # W = J M^-1 J^T over the directions, and the speeds along them now
     W = np.zeros((n, n))
-    largest = 0.0
+    speeds = np.zeros(n)
+    impulse = np.zeros(n)
     for k in range(n):
+        for side in range(2):
+            x = body_a[k] if side == 0 else body_b[k]
+            if x >= 0:
+                for d in range(3):
+                    speeds[k] += (ja[k, d] if side == 0 else jb[k, d]) * vel[x, d]
+        impulse[k] = rows[row[k], LAMBDA_N] if k < count else rows[row[k], LAMBDA_T]
         for q in range(k + 1):
             total = 0.0
             for sk in range(2):
@@ -550,50 +574,72 @@ def _polish(F, mean, rows, pairs, count, starts, sizes, blocks, speed):
                         total += left * inverse[xk, d] * right
             W[k, q] = total
             W[q, k] = total
-        largest = max(largest, W[k, k])
-    step = solve_spd(W, r, 1e-12 * largest)
+    # the speeds with no contact impulse at all
+    base = speeds.copy()
     for k in range(n):
-        if not math.isfinite(step[k]):
-            return False  # W singular to rounding (redundant contacts): keep the sweeps' answer
-    # Candidate impulses, and their check.
-    new_n = np.empty(count)
-    for c in range(count):
-        new_n[c] = rows[c, LAMBDA_N]
+        for q in range(n):
+            base[k] -= W[k, q] * impulse[q]
+    # LCP unknowns: l (count), f+ (nf), f- (nf), s (nf)
+    M = np.zeros((size, size))
+    q = np.zeros(size)
+    plus = count
+    minus = count + nf
+    slide = count + 2 * nf
+    for a in range(count):
+        q[a] = base[a] - rows[a, TARGET]
+        for b in range(count):
+            M[a, b] = W[a, b]
+        for f in range(nf):
+            M[a, plus + f] = W[a, count + f]
+            M[a, minus + f] = -W[a, count + f]
+    for f in range(nf):
+        t = count + f
+        q[plus + f] = base[t]
+        q[minus + f] = -base[t]
+        for b in range(count):
+            M[plus + f, b] = W[t, b]
+            M[minus + f, b] = -W[t, b]
+        for g in range(nf):
+            M[plus + f, plus + g] = W[t, count + g]
+            M[plus + f, minus + g] = -W[t, count + g]
+            M[minus + f, plus + g] = -W[t, count + g]
+            M[minus + f, minus + g] = W[t, count + g]
+        M[plus + f, slide + f] = 1.0
+        M[minus + f, slide + f] = 1.0
+        M[slide + f, plus + f] = -1.0
+        M[slide + f, minus + f] = -1.0
+        first = row[t]
+        mu = rows[first, MU]
+        M[slide + f, first] = mu
+        if first + 1 < count and pairs[first + 1, 2] == pairs[first, 2] and pairs[first + 1, 3] == pairs[first, 3]:
+            M[slide + f, first + 1] = mu
+    z, ok = lemke(M, q, 8 * size + 64)
+    if not ok:
+        return False
+    fresh = np.empty(n)
+    for a in range(count):
+        fresh[a] = z[a]
+    for f in range(nf):
+        fresh[count + f] = z[plus + f] - z[minus + f]
+    moved = vel.copy()
     for k in range(n):
-        if kind[k] == 0:
-            new_n[index[k]] += step[k]
-            if not new_n[index[k]] >= 0.0:
-                return False
-    for k in range(n):
-        if kind[k] == 1:
-            c = starts[index[k]]
-            total = new_n[c] + (new_n[c + 1] if sizes[index[k]] == 2 else 0.0)
-            if not abs(rows[c, LAMBDA_T] + step[k]) <= rows[c, MU] * total:
-                return False
-    moved = mean.copy()
-    for k in range(n):
+        change = fresh[k] - impulse[k]
         for side in range(2):
             x = body_a[k] if side == 0 else body_b[k]
-            if x < 0:
-                continue
-            for d in range(3):
-                coefficient = ja[k, d] if side == 0 else jb[k, d]
-                moved[x, d] += inverse[x, d] * coefficient * step[k]
-    for c in range(count):
-        if new_n[c] == 0.0:
-            ux, uy = _relative(moved, pairs, rows, c)
-            if not ux * rows[c, NX] + uy * rows[c, NY] >= rows[c, TARGET] - SOLVE_TOLERANCE * speed:
-                return False
-    for k in range(n):
-        if kind[k] == 1:
-            c = starts[index[k]]
-            rows[c, LAMBDA_T] += step[k]
-            if sizes[index[k]] == 2:
-                rows[c + 1, LAMBDA_T] = 0.0
-    for c in range(count):
-        rows[c, LAMBDA_N] = new_n[c]
-    mean[:, :] = moved
-    return True
+            if x >= 0:
+                for d in range(3):
+                    moved[x, d] += inverse[x, d] * (ja[k, d] if side == 0 else jb[k, d]) * change
+    old = rows[:count, LAMBDA_N:LAMBDA_T + 1].copy()
+    for a in range(count):
+        rows[a, LAMBDA_N] = fresh[a]
+        rows[a, LAMBDA_T] = 0.0
+    for f in range(nf):
+        rows[row[count + f], LAMBDA_T] = fresh[count + f]
+    if _residual(moved, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
+        vel[:, :] = moved
+        return True
+    rows[:count, LAMBDA_N:LAMBDA_T + 1] = old
+    return False
 
 
 @njit(cache=True)
@@ -616,13 +662,13 @@ def _blocks(pairs, count):
 
 
 @njit(cache=True)
-def _residual(mean, rows, pairs, count, starts, sizes, blocks):
+def _residual(vel, rows, pairs, count, starts, sizes, blocks):
     """How far the impulses are from solving the contacts, as a speed: the largest error of
     a pushing point's normal speed, of a point closing faster than its target, or of a
     sticking pair's (or point's) sliding speed."""
     worst = 0.0
     for c in range(count):
-        ux, uy = _relative(mean, pairs, rows, c)
+        ux, uy = _relative(vel, pairs, rows, c)
         gap = ux * rows[c, NX] + uy * rows[c, NY] - rows[c, TARGET]
         if rows[c, LAMBDA_N] > 0.0:
             worst = max(worst, abs(gap))
@@ -634,12 +680,12 @@ def _residual(mean, rows, pairs, count, starts, sizes, blocks):
             continue
         if sizes[b] == 2:
             rax, ray, rbx, rby = _midpoint(rows, c)
-            ux, uy = _relative_at(mean, pairs, c, rax, ray, rbx, rby)
+            ux, uy = _relative_at(vel, pairs, c, rax, ray, rbx, rby)
             limit = rows[c, MU] * (rows[c, LAMBDA_N] + rows[c + 1, LAMBDA_N])
         else:
-            ux, uy = _relative(mean, pairs, rows, c)
+            ux, uy = _relative(vel, pairs, rows, c)
             limit = rows[c, MU] * rows[c, LAMBDA_N]
-        if abs(rows[c, LAMBDA_T]) < limit:
+        if abs(rows[c, LAMBDA_T]) < limit * (1.0 - 1e-9):  # sticking, not at the cone's edge
             worst = max(worst, abs(-ux * rows[c, NY] + uy * rows[c, NX]))
     return worst
 
@@ -653,28 +699,27 @@ def _kinetic(F, i, vx, vy, w):
 
 
 @njit(cache=True)
-def _guard(F, members, mean, h):
-    """The energy guard: the part (0 to 1) of the solve's velocity changes to keep so that the
-    kinetic energy of the mean velocities does not rise (the step's own measure of motion: a
-    body held still on a face has none, while its velocity alternates between +-h |a| / 2);
-    below 1 only where rounding or the push-out of an overlap would add some."""
-    before = 0.0
-    grow = 0.0  # first-order change of the mean kinetic energy along the changes
+def _guard(F, members, before, after):
+    """The energy guard of the impact stage: the part (0 to 1) of the velocity changes from
+    ``before`` to ``after`` to keep so that the kinetic energy does not rise (inelastic
+    impulses never raise it; this catches rounding)."""
+    energy = 0.0
+    grow = 0.0  # first-order change of the kinetic energy along the changes
     square = 0.0  # its second-order part
     for k in range(members.shape[0]):
         i = members[k]
         mass = 1.0 / F[i, L.INV_MASS]
         inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
-        wx = F[i, L.VX] + 0.5 * h * F[i, L.AX]
-        wy = F[i, L.VY] + 0.5 * h * F[i, L.AY]
-        w = F[i, L.OMEGA]
-        dvx = mean[k, 0] - wx
-        dvy = mean[k, 1] - wy
-        dw = mean[k, 2] - w
-        before += _kinetic(F, i, wx, wy, w)
+        wx = before[k, 0]
+        wy = before[k, 1]
+        w = before[k, 2]
+        dvx = after[k, 0] - wx
+        dvy = after[k, 1] - wy
+        dw = after[k, 2] - w
+        energy += _kinetic(F, i, wx, wy, w)
         grow += mass * (wx * dvx + wy * dvy) + inertia * w * dw
         square += 0.5 * (mass * (dvx * dvx + dvy * dvy) + inertia * dw * dw)
-    if grow + square > 1e-13 * before and square > 0.0:
+    if grow + square > 1e-13 * energy and square > 0.0:
         return max(min(-grow / square, 1.0), 0.0) * (1.0 - 4e-16)
     return 1.0
 
@@ -709,25 +754,41 @@ def _parts(pairs, count, m):
 
 
 @njit(cache=True)
-def _finish(S, members, local, mean, pairs, count, h):
-    """New velocities from the mean ones (scaled by the energy guard), the island's parts,
-    bodies with no contact leave it, every body touched. Returns the labels and the largest
-    mean speed over ``sqrt(|a| reach)``."""
+def _finish(S, members, local, now, end, rows, pairs, count, h):
+    """Each body keeps the impact stage's velocity and spin ``now`` and, over the step, the
+    constant acceleration and angular acceleration that bring it to the force stage's
+    velocity and spin at the step's end, ``(end - now) / h``: the contact forces act over the
+    step, not at its start, so a body held still has velocity and acceleration zero, and a
+    contact that holds does no work. Then the island's parts; bodies with no contact leave it
+    (free acceleration again, no angular acceleration); every body touched. Returns the
+    labels and the largest mean speed over ``sqrt(|a| reach)``."""
     F = S[0]
     I = S[1]
-    scale = _guard(F, members, mean, h)
     labels = _parts(pairs, count, members.shape[0])
+    pushed = np.zeros(members.shape[0], dtype=np.bool_)
+    for c in range(count):
+        if rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0:
+            pushed[pairs[c, 0]] = True
+            if pairs[c, 1] >= 0:
+                pushed[pairs[c, 1]] = True
     fastest = 0.0
     for k in range(members.shape[0]):
         i = members[k]
         local[i] = -1
-        F[i, L.VX] += scale * (mean[k, 0] - 0.5 * h * F[i, L.AX] - F[i, L.VX])
-        F[i, L.VY] += scale * (mean[k, 1] - 0.5 * h * F[i, L.AY] - F[i, L.VY])
-        F[i, L.OMEGA] += scale * (mean[k, 2] - F[i, L.OMEGA])
+        F[i, L.VX] = now[k, 0]
+        F[i, L.VY] = now[k, 1]
+        F[i, L.OMEGA] = now[k, 2]
+        if pushed[k] and labels[k] >= 0:
+            F[i, L.AX] = (end[k, 0] - now[k, 0]) / h
+            F[i, L.AY] = (end[k, 1] - now[k, 1]) / h
+            F[i, L.ALPHA] = (end[k, 2] - now[k, 2]) / h
+        else:
+            F[i, L.AX] = F[i, L.FREE_AX]
+            F[i, L.AY] = F[i, L.FREE_AY]
+            F[i, L.ALPHA] = 0.0
         reach = F[i, L.REACH]
-        pull = math.hypot(F[i, L.AX], F[i, L.AY]) * reach
-        speed = math.hypot(F[i, L.VX] + 0.5 * h * F[i, L.AX], F[i, L.VY] + 0.5 * h * F[i, L.AY])
-        speed += abs(F[i, L.OMEGA]) * reach
+        pull = math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]) * reach
+        speed = 0.5 * (math.hypot(now[k, 0] + end[k, 0], now[k, 1] + end[k, 1]) + abs(now[k, 2] + end[k, 2]) * reach)
         if pull > 0.0:
             fastest = max(fastest, speed / math.sqrt(pull))
         elif speed > 0.0:
@@ -736,6 +797,52 @@ def _finish(S, members, local, mean, pairs, count, h):
             I[i, L.ISLAND] = -1
         touch(S, i)
     return labels, fastest
+
+
+@njit(cache=True)
+def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
+    """The impact stage: impulses on the velocities now (``now``, changed in place) so that
+    no touching point closes (or it bounces, ``IMPACT``) and no point with a gap closes by
+    more than it within the step; inelastic, so kinetic energy never rises (the energy
+    guard scales back what rounding would add). The same solve as the force stage, on the
+    ``IMPACT`` targets, from zero impulses; the rows' targets and warm-start impulses are
+    left as they were. Returns the number of sweeps."""
+    if count == 0:
+        return 0
+    closing = False
+    for c in range(count):
+        ux, uy = _relative(now, pairs, rows, c)
+        if ux * rows[c, NX] + uy * rows[c, NY] < rows[c, IMPACT]:
+            closing = True
+            break
+    if not closing:
+        return 0
+    before = now.copy()
+    warm = rows[:count, LAMBDA_N:LAMBDA_T + 1].copy()
+    forces = rows[:count, TARGET].copy()
+    rows[:count, TARGET] = rows[:count, IMPACT]
+    rows[:count, LAMBDA_N] = 0.0
+    rows[:count, LAMBDA_T] = 0.0
+    sweeps = _solve(F, now, rows, pairs, count, speed, down_x, down_y, IMPACT_ITERATIONS)
+    scale = _guard(F, members, before, now)
+    for k in range(members.shape[0]):
+        for q in range(3):
+            now[k, q] = before[k, q] + scale * (now[k, q] - before[k, q])
+    rows[:count, TARGET] = forces
+    rows[:count, LAMBDA_N:LAMBDA_T + 1] = warm
+    return sweeps
+
+
+@njit(cache=True)
+def _end_targets(rows, now, pairs, count):
+    """Turn each row's target, a bound on the point's *mean* normal speed over the step (a
+    gap may close by itself, an overlap is pushed out), into a bound on its speed at the
+    step's *end*. The contact forces are constant over the step, so a point's normal speed
+    is linear in time and its mean is the average of the speeds now and at the end:
+    ``end >= 2 target - now``."""
+    for c in range(count):
+        ux, uy = _relative(now, pairs, rows, c)
+        rows[c, TARGET] = 2.0 * rows[c, TARGET] - (ux * rows[c, NX] + uy * rows[c, NY])
 
 
 @njit(cache=True)
@@ -751,20 +858,28 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     many sweeps the solve took.
     """
     F = S[0]
-    mean, margin = _start(S, members, local, h, t)
+    now, margin = _start(S, members, local, h, t)
     rows, pairs, count = _collect(S, members, local, margin, t)
     keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
     pull = 0.0
     for k in range(members.shape[0]):
-        pull = max(pull, math.hypot(F[members[k], L.AX], F[members[k], L.AY]))
-    down_x = F[members[0], L.AX]
-    down_y = F[members[0], L.AY]
+        pull = max(pull, math.hypot(F[members[k], L.FREE_AX], F[members[k], L.FREE_AY]))
+    down_x = F[members[0], L.FREE_AX]
+    down_y = F[members[0], L.FREE_AY]
     speed = h * pull
     if not speed > 0.0:  # no acceleration: measure the solve against the bodies' own speeds
         for k in range(members.shape[0]):
-            speed = max(speed, math.hypot(mean[k, 0], mean[k, 1]) + abs(mean[k, 2]) * F[members[k], L.REACH])
-    sweeps = _solve(F, mean, rows, pairs, count, speed, down_x, down_y)
-    labels, fastest = _finish(S, members, local, mean, pairs, count, h)
+            speed = max(speed, math.hypot(now[k, 0], now[k, 1]) + abs(now[k, 2]) * F[members[k], L.REACH])
+    sweeps = _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y)
+    end = np.empty_like(now)
+    for k in range(members.shape[0]):
+        i = members[k]
+        end[k, 0] = now[k, 0] + h * F[i, L.FREE_AX]
+        end[k, 1] = now[k, 1] + h * F[i, L.FREE_AY]
+        end[k, 2] = now[k, 2]
+    _end_targets(rows, now, pairs, count)
+    sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS)
+    labels, fastest = _finish(S, members, local, now, end, rows, pairs, count, h)
     S[13][L.S_ISLAND_STEPS] += 1
     order = np.argsort(keys)
     impulses = np.empty((count, 2))

@@ -65,7 +65,11 @@ class Islands:
 
     def collided(self, a: int, b: int, join: bool, t: float) -> None:
         """A collision of ``a`` and ``b`` at ``t`` touched an island or is persistent
-        (``join``): wake the islands involved and, if ``join``, make them one."""
+        (``join``): wake the islands involved and, if ``join``, make them one; either way
+        each island involved steps now. Its last step planned its contact forces and
+        margins for the velocities before the impact, and its bodies' contacts with fixed
+        bodies and with each other are not predicted: a body knocked towards a wall is
+        stopped there only by a step."""
         I = self.world._state.I
         bodies = [x for x in (a, b) if not I[x, L.FIXED]]
         for x in bodies:
@@ -74,6 +78,9 @@ class Islands:
                 self._wake(int(I[x, L.ISLAND]), t)
         if join:
             self._merge(bodies, t)
+            return
+        for k in sorted({int(I[x, L.ISLAND]) for x in bodies if I[x, L.ISLAND] >= 0}):
+            self._schedule(k, t)
 
     def _merge(self, bodies: list[int], t: float) -> None:
         I = self.world._state.I
@@ -112,20 +119,28 @@ class Islands:
         if island.asleep:
             self._wake(k, self.world.time)
         island.members.remove(i)
-        self.world._state.I[i, L.ISLAND] = -1
+        state = self.world._state
+        state.I[i, L.ISLAND] = -1
+        engine.advance(state.F, i, self.world.time)  # free of its contact forces from now on
+        state.F[i, L.AX] = state.F[i, L.FREE_AX]
+        state.F[i, L.AY] = state.F[i, L.FREE_AY]
+        state.F[i, L.ALPHA] = 0.0
         if not island.members:
             self._cancel(island)
             del self.islands[k]
 
     def wake_near(self, i: int) -> None:
         """Body ``i`` is about to change through the API: wake its island, or, for a fixed
-        body, the sleeping islands near it."""
+        body, the sleeping islands near it. An awake island steps now: the contact forces its
+        last step planned were for the motion before the change."""
         state = self.world._state
         now = self.world.time
         k = int(state.I[i, L.ISLAND])
         if k >= 0:
             if self.islands[k].asleep:
                 self._wake(k, now)
+            else:
+                self._schedule(k, now)
             return
         if state.I[i, L.FIXED] and any(island.asleep for island in self.islands.values()):
             count = grid.gather(state.S, i, self.world._extent(i))
@@ -195,7 +210,7 @@ class Islands:
         for i in island.members:
             engine.advance(F, i, now)
             F[i, L.VX] = F[i, L.VY] = F[i, L.OMEGA] = 0.0
-            F[i, L.AX] = F[i, L.AY] = 0.0
+            F[i, L.AX] = F[i, L.AY] = F[i, L.ALPHA] = 0.0
         island.asleep = True
         island.keys = _NO_KEYS
         island.impulses = _NO_IMPULSES
@@ -210,6 +225,7 @@ class Islands:
             engine.advance(F, i, t)
             F[i, L.AX] = F[i, L.FREE_AX]
             F[i, L.AY] = F[i, L.FREE_AY]
+            F[i, L.ALPHA] = 0.0
         island.asleep = False
         island.still_since = None
         self.world._state.stats[L.S_WAKES] += 1

@@ -321,13 +321,13 @@ def joins(S, a, b, nx, ny, leaving):
     acceleration anywhere (a gas, a game in space) no contact is persistent."""
     F = S[0]
     I = S[1]
-    scale = max(math.hypot(F[a, L.AX], F[a, L.AY]), math.hypot(F[b, L.AX], F[b, L.AY]))
+    scale = max(math.hypot(F[a, L.FREE_AX], F[a, L.FREE_AY]), math.hypot(F[b, L.FREE_AX], F[b, L.FREE_AY]))
     if not scale > 0.0:
         return False
     reach = min(F[a, L.REACH], F[b, L.REACH])
     if leaving * abs(leaving) >= 2.0 * scale * S[3][L.REST_HEIGHT] * reach:
         return False
-    pressing = (F[a, L.AX] - F[b, L.AX]) * nx + (F[a, L.AY] - F[b, L.AY]) * ny < 0.0
+    pressing = (F[a, L.FREE_AX] - F[b, L.FREE_AX]) * nx + (F[a, L.FREE_AY] - F[b, L.FREE_AY]) * ny < 0.0
     return pressing or I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0
 
 

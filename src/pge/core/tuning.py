@@ -29,12 +29,16 @@ MIN_TICKS = 64.0
 ISLAND_STEP = 1.0 / 240.0
 #: at most this many sweeps of the sequential-impulse solve at each step (it always returns)
 ISLAND_ITERATIONS = 400
+#: at most this many sweeps of the impact stage (inelastic, so every sweep only takes kinetic
+#: energy out: stopped early, it leaves a little approach for the force stage and the next step)
+IMPACT_ITERATIONS = 16
 #: the solve stops early once no contact's speed is off by more than this times h |a| (the
 #: speed gravity gives in one step)
 SOLVE_TOLERANCE = 1e-6
-#: the solve finishes exactly (one dense solve of the contacts that push and stick) when
-#: they are at most this many; every 16 sweeps it tries
-POLISH_LIMIT = 160
+#: after 16 sweeps that did not converge, the solve finishes exactly (Lemke's method on the
+#: complementarity problem with friction) when it has at most this many unknowns (a point
+#: each, three for a pair's friction)
+LCP_LIMIT = 240
 #: a pair is in an island's manifold while its gap is below its step travel plus this times
 #: the smaller bounding radius (so that resting contacts stay listed)
 CONTACT_MARGIN = 0.01
