@@ -330,6 +330,23 @@ def test_energy_never_rises_at_a_step_and_over_a_step_only_by_the_integration_er
     assert around[-1][1] < around[0][0]
 
 
+def test_a_ball_spinning_without_friction_lets_its_island_sleep_and_spins_on():
+    """A circle's spin does not change its shape and only friction feels it: a ball spinning
+    on a frictionless floor beside a box must not keep their island stepping for ever, and
+    asleep it keeps its spin (nothing could have slowed it)."""
+    world = World(gravity=(0.0, -G), contact="islands", bounds=(-2.0, -1.0, 2.0, 3.0))
+    world.add_box(-2.0, -1.0, 4.0, 1.0, fixed=True, friction=0.0)
+    ball = world.add_circle((0.0, 0.1), 0.1, mass=1.0, friction=0.0, elasticity=0.0, angular_velocity=5.0)
+    box = world.add_box(0.1, 0.0, 0.2, 0.2, mass=1.0, friction=0.5, elasticity=0.0)
+    world.run_until(2.0)
+    assert ball.asleep and box.asleep
+    assert ball.angular_velocity == 5.0
+    steps = world.stats["island_steps"]
+    world.run_until(4.0)
+    assert world.stats["island_steps"] == steps
+    assert ball.position[1] == pytest.approx(0.1, abs=1e-12)
+
+
 def test_contact_option_is_checked():
     with pytest.raises(ValueError, match="contact must be"):
         World(contact="magic")

@@ -761,16 +761,22 @@ def _finish(S, members, local, now, end, rows, pairs, count, h):
     step, not at its start, so a body held still has velocity and acceleration zero, and a
     contact that holds does no work. Then the island's parts; bodies with no contact leave it
     (free acceleration again, no angular acceleration); every body touched. Returns the
-    labels and the largest mean speed over ``sqrt(|a| reach)``."""
+    labels and the largest mean speed (a circle's spin counted only where friction touches
+    it) over ``sqrt(|a| reach)``."""
     F = S[0]
     I = S[1]
     labels = _parts(pairs, count, members.shape[0])
     pushed = np.zeros(members.shape[0], dtype=np.bool_)
+    gripped = np.zeros(members.shape[0], dtype=np.bool_)  # touching something with friction
     for c in range(count):
         if rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0:
             pushed[pairs[c, 0]] = True
             if pairs[c, 1] >= 0:
                 pushed[pairs[c, 1]] = True
+        if rows[c, MU] > 0.0:
+            gripped[pairs[c, 0]] = True
+            if pairs[c, 1] >= 0:
+                gripped[pairs[c, 1]] = True
     fastest = 0.0
     for k in range(members.shape[0]):
         i = members[k]
@@ -788,7 +794,11 @@ def _finish(S, members, local, now, end, rows, pairs, count, h):
             F[i, L.ALPHA] = 0.0
         reach = F[i, L.REACH]
         pull = math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]) * reach
-        speed = 0.5 * (math.hypot(now[k, 0] + end[k, 0], now[k, 1] + end[k, 1]) + abs(now[k, 2] + end[k, 2]) * reach)
+        speed = 0.5 * math.hypot(now[k, 0] + end[k, 0], now[k, 1] + end[k, 1])
+        if I[i, L.KIND] != CIRCLE or gripped[k]:
+            # A circle's spin does not change its shape, and only friction feels it: a
+            # circle touching nothing with friction may spin on while its island sleeps.
+            speed += 0.5 * abs(now[k, 2] + end[k, 2]) * reach
         if pull > 0.0:
             fastest = max(fastest, speed / math.sqrt(pull))
         elif speed > 0.0:

@@ -13,12 +13,15 @@ its bodies or to a fixed body near it, or a new member wakes it.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from pge.contact.island import step_island
 from pge.core import engine, grid
 from pge.core import layout as L
 from pge.core.tuning import SLEEP_SPEED, SLEEP_TIME
+from pge.toi import CIRCLE
 
 _NO_KEYS = np.zeros(0, dtype=np.int64)
 _NO_IMPULSES = np.zeros((0, 2))
@@ -207,9 +210,15 @@ class Islands:
         island = self.islands[k]
         F = self.world._state.F
         now = self.world.time
+        I = self.world._state.I
         for i in island.members:
             engine.advance(F, i, now)
-            F[i, L.VX] = F[i, L.VY] = F[i, L.OMEGA] = 0.0
+            F[i, L.VX] = F[i, L.VY] = 0.0
+            pull = math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]) * F[i, L.REACH]
+            if I[i, L.KIND] != CIRCLE or abs(F[i, L.OMEGA]) * F[i, L.REACH] < SLEEP_SPEED * math.sqrt(pull):
+                # A circle spinning faster than a still body may touches nothing with friction
+                # (the step did not count its spin): it spins on, which no contact feels.
+                F[i, L.OMEGA] = 0.0
             F[i, L.AX] = F[i, L.AY] = F[i, L.ALPHA] = 0.0
         island.asleep = True
         island.keys = _NO_KEYS
