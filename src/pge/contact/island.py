@@ -523,21 +523,11 @@ def _directions(F, rows, pairs, count, starts, sizes, blocks):
 
 
 @njit(cache=True)
-def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
-    """Solve the step's contacts exactly: the complementarity problem of Stewart and Trinkle
-    with Coulomb friction (exact in 2D: a pair's friction pushes one way or the other along
-    its tangent), by Lemke's method (``pge.numerics.lcp``). Unknowns: each row's normal
-    impulse ``l >= 0``; each block's friction ``f+ - f-`` (``f+, f- >= 0``) and its sliding
-    speed ``s >= 0``. Conditions: a pushing point reaches its target normal speed and no
-    point closes faster than it; a sliding pair's friction is ``mu`` times its normal
-    impulses, against the slide; a sticking pair stops sliding, within the cone. Replaces the
-    impulses and velocities and returns true when the answer checks out (``_residual``);
-    leaves them alone otherwise (a ray, or too many unknowns: the sweeps go on)."""
-    ja, jb, body_a, body_b, row, nf = _directions(F, rows, pairs, count, starts, sizes, blocks)
+def _operator(F, vel, rows, pairs, count, ja, jb, body_a, body_b, row):
+    """The contact problem along the solve's directions: ``W = J M^-1 J^T``, the speeds
+    along them with no contact impulse (``base``), the impulses now, and each local body's
+    inverse mass and inertia. Returns ``(W, base, impulse, inverse)``."""
     n = ja.shape[0]
-    size = count + 3 * nf
-    if size > LCP_LIMIT:
-        return False
     inverse = np.zeros((vel.shape[0], 3))
     for k in range(n):
         for side in range(2):
@@ -547,7 +537,6 @@ def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
                 inverse[x, 0] = F[i, L.INV_MASS]
                 inverse[x, 1] = F[i, L.INV_MASS]
                 inverse[x, 2] = F[i, L.INV_INERTIA]
-    # W = J M^-1 J^T over the directions, and the speeds along them now
     W = np.zeros((n, n))
     speeds = np.zeros(n)
     impulse = np.zeros(n)
@@ -574,12 +563,163 @@ def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
                         total += left * inverse[xk, d] * right
             W[k, q] = total
             W[q, k] = total
-    # the speeds with no contact impulse at all
     base = speeds.copy()
     for k in range(n):
         for q in range(n):
             base[k] -= W[k, q] * impulse[q]
-    # LCP unknowns: l (count), f+ (nf), f- (nf), s (nf)
+    return W, base, impulse, inverse
+
+
+@njit(cache=True)
+def _in_block(pairs, count, first):
+    """Whether row ``first + 1`` is the second point of ``first``'s pair."""
+    return first + 1 < count and pairs[first + 1, 2] == pairs[first, 2] and pairs[first + 1, 3] == pairs[first, 3]
+
+
+@njit(cache=True)
+def _cholesky_solve(A, b):
+    """Solve ``A x = b`` for symmetric positive definite ``A`` (Cholesky); ``ok`` false when
+    a pivot is not positive."""
+    m = b.shape[0]
+    C = np.zeros((m, m))
+    for j in range(m):
+        d = A[j, j]
+        for k in range(j):
+            d -= C[j, k] * C[j, k]
+        if not d > 0.0:
+            return b, False
+        C[j, j] = math.sqrt(d)
+        for i in range(j + 1, m):
+            e = A[i, j]
+            for k in range(j):
+                e -= C[i, k] * C[j, k]
+            C[i, j] = e / C[j, j]
+    y = b.copy()
+    for i in range(m):
+        for k in range(i):
+            y[i] -= C[i, k] * y[k]
+        y[i] /= C[i, i]
+    for i in range(m - 1, -1, -1):
+        for k in range(i + 1, m):
+            y[i] -= C[k, i] * y[k]
+        y[i] /= C[i, i]
+    return y, True
+
+
+@njit(cache=True)
+def _active_set(W, base, rows, pairs, row, count, nf, impulse):
+    """The exact answer on the sweeps' active set, when they have found it: which points
+    push (``l > 0``), which pairs stick and which slide, and which way. On that set the
+    problem is linear: a pushing point's normal speed is its target, a sticking pair's
+    sliding speed zero, a sliding pair's friction ``mu`` times its normal impulses against
+    the slide. Solved in least squares with a tiny pull towards the sweeps' impulses, which
+    fixes the share of redundant points (a face on three points, a statically indeterminate
+    pile) and leaves the rest exact. Returns ``(impulses, ok)``; ``ok`` only when the answer
+    satisfies every condition of the problem (the set was right), else Lemke's method
+    decides."""
+    n = count + nf
+    unknown = -np.ones(n, dtype=np.int64)
+    m = 0
+    for a in range(count):
+        if impulse[a] > 0.0:
+            unknown[a] = m
+            m += 1
+    sign = np.zeros(nf)
+    for f in range(nf):
+        first = row[count + f]
+        load = impulse[first]
+        if _in_block(pairs, count, first):
+            load += impulse[first + 1]
+        limit = rows[first, MU] * load
+        if abs(impulse[count + f]) < limit * (1.0 - 1e-9):
+            unknown[count + f] = m
+            m += 1
+        elif impulse[count + f] != 0.0:
+            sign[f] = 1.0 if impulse[count + f] > 0.0 else -1.0
+    if m == 0:
+        return impulse, False
+    # impulses = P y: the unknowns themselves, and a sliding pair's friction from its loads
+    P = np.zeros((n, m))
+    for k in range(n):
+        if unknown[k] >= 0:
+            P[k, unknown[k]] = 1.0
+    for f in range(nf):
+        if sign[f] != 0.0:
+            first = row[count + f]
+            for a in range(first, first + (2 if _in_block(pairs, count, first) else 1)):
+                if unknown[a] >= 0:
+                    P[count + f, unknown[a]] = sign[f] * rows[first, MU]
+    A = np.zeros((m, m))
+    b = np.zeros(m)
+    for k in range(n):
+        e = unknown[k]
+        if e < 0:
+            continue
+        for j in range(m):
+            total = 0.0
+            for q in range(n):
+                total += W[k, q] * P[q, j]
+            A[e, j] = total
+        b[e] = (rows[k, TARGET] if k < count else 0.0) - base[k]
+    # least squares, pulled towards the sweeps' answer by eps: (A^T A + eps) y = A^T b + eps y0
+    N = np.zeros((m, m))
+    r = np.zeros(m)
+    scale = 0.0
+    for i in range(m):
+        for j in range(i + 1):
+            total = 0.0
+            for e in range(m):
+                total += A[e, i] * A[e, j]
+            N[i, j] = total
+            N[j, i] = total
+        scale = max(scale, N[i, i])
+        for e in range(m):
+            r[i] += A[e, i] * b[e]
+    eps = 1e-13 * scale
+    for k in range(n):
+        if unknown[k] >= 0:
+            N[unknown[k], unknown[k]] += eps
+            r[unknown[k]] += eps * impulse[k]
+    y, ok = _cholesky_solve(N, r)
+    if not ok:
+        return impulse, False
+    fresh = np.zeros(n)
+    for k in range(n):
+        for j in range(m):
+            fresh[k] += P[k, j] * y[j]
+    for a in range(count):
+        if fresh[a] < 0.0:
+            return impulse, False
+    # the speeds of the answer: no point closing faster than its target, a sliding pair
+    # sliding the way its friction opposes, a sticking one inside its cone
+    tolerance = 1e-9 * (np.abs(base).max() + 1e-300)
+    for k in range(n):
+        speed = base[k]
+        for q in range(n):
+            speed += W[k, q] * fresh[q]
+        if k < count:
+            if unknown[k] < 0 and speed < rows[k, TARGET] - tolerance:
+                return impulse, False
+        else:
+            f = k - count
+            first = row[k]
+            load = fresh[first]
+            if _in_block(pairs, count, first):
+                load += fresh[first + 1]
+            if unknown[k] >= 0 and abs(fresh[k]) > rows[first, MU] * load * (1.0 + 1e-9):
+                return impulse, False
+            if sign[f] * speed > tolerance:
+                return impulse, False
+    return fresh, True
+
+
+@njit(cache=True)
+def _lemke_solve(W, base, rows, pairs, row, count, nf):
+    """The problem as Stewart and Trinkle's LCP with Coulomb friction (exact in 2D),
+    solved by Lemke's method. Unknowns: each row's normal impulse ``l >= 0``; each block's
+    friction ``f+ - f-`` (``f+, f- >= 0``) and its sliding speed ``s >= 0``. Returns
+    ``(impulses, ok)``; ``ok`` false on a ray or a budget run out."""
+    size = count + 3 * nf
     M = np.zeros((size, size))
     q = np.zeros(size)
     plus = count
@@ -611,16 +751,37 @@ def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
         first = row[t]
         mu = rows[first, MU]
         M[slide + f, first] = mu
-        if first + 1 < count and pairs[first + 1, 2] == pairs[first, 2] and pairs[first + 1, 3] == pairs[first, 3]:
+        if _in_block(pairs, count, first):
             M[slide + f, first + 1] = mu
     z, ok = lemke(M, q, 8 * size + 64)
-    if not ok:
-        return False
-    fresh = np.empty(n)
+    fresh = np.empty(count + nf)
     for a in range(count):
         fresh[a] = z[a]
     for f in range(nf):
         fresh[count + f] = z[plus + f] - z[minus + f]
+    return fresh, ok
+
+
+@njit(cache=True)
+def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
+    """Solve the step's contacts exactly: a pushing point reaches its target normal speed
+    and no point closes faster than it; a sliding pair's friction is ``mu`` times its normal
+    impulses, against the slide; a sticking pair stops sliding, within the cone. First on
+    the sweeps' active set (``_active_set``: one linear solve, right at most steps of a
+    pile), else as a complementarity problem by Lemke's method (``_lemke_solve``). Replaces
+    the impulses and velocities and returns true when the answer checks out
+    (``_residual``); leaves them alone otherwise (a ray, or too many unknowns: the sweeps go
+    on)."""
+    ja, jb, body_a, body_b, row, nf = _directions(F, rows, pairs, count, starts, sizes, blocks)
+    n = ja.shape[0]
+    if count + 3 * nf > LCP_LIMIT:
+        return False
+    W, base, impulse, inverse = _operator(F, vel, rows, pairs, count, ja, jb, body_a, body_b, row)
+    fresh, ok = _active_set(W, base, rows, pairs, row, count, nf, impulse)
+    if not ok:
+        fresh, ok = _lemke_solve(W, base, rows, pairs, row, count, nf)
+        if not ok:
+            return False
     moved = vel.copy()
     for k in range(n):
         change = fresh[k] - impulse[k]
