@@ -347,6 +347,22 @@ def test_a_ball_spinning_without_friction_lets_its_island_sleep_and_spins_on():
     assert ball.position[1] == pytest.approx(0.1, abs=1e-12)
 
 
+def test_a_spinning_ball_only_touching_a_rough_wall_lets_its_island_sleep():
+    """Friction acts only where a contact presses: a frictionless ball spinning on a
+    frictionless floor, just touching a rough wall beside it, is still; its island sleeps
+    and it spins on."""
+    world = World(gravity=(0.0, -G), contact="islands", bounds=(-2.0, -1.0, 2.0, 3.0))
+    world.add_box(-2.0, -1.0, 4.0, 1.0, fixed=True, friction=0.0)
+    world.add_box(-1.0, 0.0, 0.9, 1.0, fixed=True, friction=0.5)  # the wall's face at x = -0.1
+    ball = world.add_circle((0.0, 0.105), 0.1, mass=1.0, friction=0.0, elasticity=0.0, angular_velocity=5.0)
+    world.run_until(2.0)
+    assert ball.asleep
+    assert ball.angular_velocity == 5.0
+    steps = world.stats["island_steps"]
+    world.run_until(4.0)
+    assert world.stats["island_steps"] == steps
+
+
 def test_contact_option_is_checked():
     with pytest.raises(ValueError, match="contact must be"):
         World(contact="magic")

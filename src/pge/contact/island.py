@@ -18,8 +18,9 @@ travel) are solved together with Coulomb friction, in two stages:
   acceleration exactly zero: a contact that holds does no work.
 
 Each stage is a complementarity problem, solved by sequential impulses (projected
-Gauss-Seidel) and, where 16 sweeps do not converge, exactly by Lemke's method
-(``pge.numerics.lcp``) on Stewart and Trinkle's formulation.
+Gauss-Seidel) and, where a few sweeps do not converge, exactly: on the sweeps' active set
+(one linear solve) where they found it, else by Lemke's method (``pge.numerics.lcp``) on
+Stewart and Trinkle's formulation.
 
 Stages: ``_start`` (bodies to ``t``, velocities now, travel margins), ``_collect`` (the
 manifold), ``_prepare`` (lever arms, effective masses, targets, last step's impulses),
@@ -54,6 +55,7 @@ from pge.core.motion import advance, orient
 from pge.numerics.lcp import lemke
 from pge.core.tuning import (
     CONTACT_MARGIN,
+    EXACT_AFTER,
     FACE_HYSTERESIS,
     IMPACT_ITERATIONS,
     ISLAND_ITERATIONS,
@@ -419,9 +421,9 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most):
     impulses (never pulling; a pair's two points together, ``_normal_pair``), until no
     point's speed is off by more than ``SOLVE_TOLERANCE`` times ``speed`` (``_residual``).
     Sweeps converge slowly on tall stacks and piles (their rate falls with the square of the
-    height), so after 16 that did not the problem is solved exactly (``_exact``); where that
-    cannot be done, the sweeps go on, for at most ``most`` in all. Returns the number of
-    sweeps."""
+    height), so after ``EXACT_AFTER`` that did not the problem is solved exactly
+    (``_exact``); where that cannot be done, the sweeps go on, for at most ``most`` in all.
+    Returns the number of sweeps."""
     starts, sizes, blocks = _blocks(pairs, count)
     # Sweep the pairs in order of height against the acceleration (bottom to top, then back):
     # in a stack, a load then passes all the way down, and the reactions all the way up, in
@@ -465,7 +467,7 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most):
                 change = max(change, _normal(F, vel, rows, pairs, c))
         if change == 0.0 or _residual(vel, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
             return sweep + 1
-        if sweep == 15 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
+        if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
             return sweep + 1
     return most
 
@@ -922,19 +924,19 @@ def _finish(S, members, local, now, end, rows, pairs, count, h):
     step, not at its start, so a body held still has velocity and acceleration zero, and a
     contact that holds does no work. Then the island's parts; bodies with no contact leave it
     (free acceleration again, no angular acceleration); every body touched. Returns the
-    labels and the largest mean speed (a circle's spin counted only where friction touches
-    it) over ``sqrt(|a| reach)``."""
+    labels and the largest mean speed (a circle's spin counted only where a contact with
+    friction presses on it) over ``sqrt(|a| reach)``."""
     F = S[0]
     I = S[1]
     labels = _parts(pairs, count, members.shape[0])
     pushed = np.zeros(members.shape[0], dtype=np.bool_)
-    gripped = np.zeros(members.shape[0], dtype=np.bool_)  # touching something with friction
+    gripped = np.zeros(members.shape[0], dtype=np.bool_)  # pressed on by a contact with friction
     for c in range(count):
         if rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0:
             pushed[pairs[c, 0]] = True
             if pairs[c, 1] >= 0:
                 pushed[pairs[c, 1]] = True
-        if rows[c, MU] > 0.0:
+        if rows[c, MU] > 0.0 and rows[c, LAMBDA_N] > 0.0:
             gripped[pairs[c, 0]] = True
             if pairs[c, 1] >= 0:
                 gripped[pairs[c, 1]] = True
@@ -957,8 +959,9 @@ def _finish(S, members, local, now, end, rows, pairs, count, h):
         pull = math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]) * reach
         speed = 0.5 * math.hypot(now[k, 0] + end[k, 0], now[k, 1] + end[k, 1])
         if I[i, L.KIND] != CIRCLE or gripped[k]:
-            # A circle's spin does not change its shape, and only friction feels it: a
-            # circle touching nothing with friction may spin on while its island sleeps.
+            # A circle's spin does not change its shape, and only friction feels it, where a
+            # contact presses: a circle pressed by no friction may spin on while its island
+            # sleeps.
             speed += 0.5 * abs(now[k, 2] + end[k, 2]) * reach
         if pull > 0.0:
             fastest = max(fastest, speed / math.sqrt(pull))

@@ -35,9 +35,12 @@ IMPACT_ITERATIONS = 16
 #: the solve stops early once no contact's speed is off by more than this times h |a| (the
 #: speed gravity gives in one step)
 SOLVE_TOLERANCE = 1e-6
-#: after 16 sweeps that did not converge, the solve finishes exactly (Lemke's method on the
-#: complementarity problem with friction) when it has at most this many unknowns (a point
-#: each, three for a pair's friction)
+#: after this many sweeps that did not converge, the solve finishes exactly (on the sweeps'
+#: active set, else by Lemke's method): sweeps are cheap but converge slowly on piles, and
+#: four are enough to find the active set at most steps
+EXACT_AFTER = 4
+#: the exact solve is tried when the problem has at most this many unknowns (a point each,
+#: three for a pair's friction)
 LCP_LIMIT = 240
 #: a pair is in an island's manifold while its gap is below its step travel plus this times
 #: the smaller bounding radius (so that resting contacts stay listed)
