@@ -924,8 +924,9 @@ def _finish(S, members, local, now, end, rows, pairs, count, h):
     step, not at its start, so a body held still has velocity and acceleration zero, and a
     contact that holds does no work. Then the island's parts; bodies with no contact leave it
     (free acceleration again, no angular acceleration); every body touched. Returns the
-    labels and the largest mean speed (a circle's spin counted only where a contact with
-    friction presses on it) over ``sqrt(|a| reach)``."""
+    labels, the largest mean speed (a circle's spin counted only where a contact with
+    friction presses on it) over ``sqrt(|a| reach)``, and the deepest overlap of a point
+    over the smaller reach of its pair."""
     F = S[0]
     I = S[1]
     labels = _parts(pairs, count, members.shape[0])
@@ -970,7 +971,12 @@ def _finish(S, members, local, now, end, rows, pairs, count, h):
         if labels[k] < 0:
             I[i, L.ISLAND] = -1
         touch(S, i)
-    return labels, fastest
+    deepest = 0.0
+    for c in range(count):
+        if rows[c, SEPARATION] < 0.0:
+            reach = min(F[pairs[c, 2], L.REACH], F[pairs[c, 3], L.REACH])
+            deepest = max(deepest, -rows[c, SEPARATION] / reach)
+    return labels, fastest, deepest
 
 
 @njit(cache=True)
@@ -1026,10 +1032,11 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     (all -1, and left so). ``warm_keys`` (sorted) and ``warm_impulses`` are the last step's
     contacts and their impulses.
 
-    Returns ``(keys, impulses, labels, fastest, sweeps)``: this step's contacts (sorted) and
-    impulses for the next, each member's part of the island (-1: it touches nothing and has
-    left the island), the largest mean speed over ``sqrt(|a| reach)`` (for sleep), and how
-    many sweeps the solve took.
+    Returns ``(keys, impulses, labels, fastest, deepest, sweeps)``: this step's contacts
+    (sorted) and impulses for the next, each member's part of the island (-1: it touches
+    nothing and has left the island), the largest mean speed over ``sqrt(|a| reach)`` and
+    the deepest overlap over its pair's smaller reach (for sleep), and how many sweeps the
+    solve took.
     """
     F = S[0]
     now, margin = _start(S, members, local, h, t)
@@ -1053,11 +1060,11 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         end[k, 2] = now[k, 2]
     _end_targets(rows, now, pairs, count)
     sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS)
-    labels, fastest = _finish(S, members, local, now, end, rows, pairs, count, h)
+    labels, fastest, deepest = _finish(S, members, local, now, end, rows, pairs, count, h)
     S[13][L.S_ISLAND_STEPS] += 1
     order = np.argsort(keys)
     impulses = np.empty((count, 2))
     for c in range(count):
         impulses[c, 0] = rows[order[c], LAMBDA_N]
         impulses[c, 1] = rows[order[c], LAMBDA_T]
-    return keys[order], impulses, labels, fastest, sweeps
+    return keys[order], impulses, labels, fastest, deepest, sweeps

@@ -20,7 +20,7 @@ import numpy as np
 from pge.contact.island import step_island
 from pge.core import engine, grid
 from pge.core import layout as L
-from pge.core.tuning import SLEEP_SPEED, SLEEP_TIME
+from pge.core.tuning import SLEEP_OVERLAP, SLEEP_SPEED, SLEEP_TIME
 from pge.toi import CIRCLE
 
 _NO_KEYS = np.zeros(0, dtype=np.int64)
@@ -174,7 +174,7 @@ class Islands:
             self._local = np.full(2 * state.n, -1, dtype=np.int64)
         members = np.asarray(island.members, dtype=np.int64)
         state.ensure_events(2 * members.shape[0] + 16)
-        island.keys, island.impulses, labels, fastest, sweeps = step_island(
+        island.keys, island.impulses, labels, fastest, deepest, sweeps = step_island(
             state.S, members, self._local, self.step, t, island.keys, island.impulses
         )
         self.sweeps += sweeps
@@ -194,7 +194,7 @@ class Islands:
             for i in group:
                 state.I[i, L.ISLAND] = new
             self._schedule(new, t + self.step)
-        if fastest < SLEEP_SPEED:
+        if fastest < SLEEP_SPEED and deepest <= SLEEP_OVERLAP:
             if island.still_since is None:
                 island.still_since = t
             elif t - island.still_since >= SLEEP_TIME:

@@ -56,3 +56,6 @@ FACE_HYSTERESIS = 1e-3
 #: this times sqrt(|acceleration| * reach) for SLEEP_TIME seconds
 SLEEP_SPEED = 0.01
 SLEEP_TIME = 0.5
+#: ... and while no point of it overlaps by more than this times its pair's smaller bounding
+#: radius (an overlap being pushed out is motion: asleep, it would stay)
+SLEEP_OVERLAP = 1e-8
