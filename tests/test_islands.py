@@ -16,6 +16,7 @@ import pytest
 from pge import World
 from pge.core import layout as L
 from pge.core.tuning import ISLAND_STEP
+from strategies import closed_box
 
 G = 9.81
 
@@ -361,6 +362,26 @@ def test_a_spinning_ball_only_touching_a_rough_wall_lets_its_island_sleep():
     steps = world.stats["island_steps"]
     world.run_until(4.0)
     assert world.stats["island_steps"] == steps
+
+
+def test_elastic_bodies_joined_in_an_island_keep_their_energy():
+    """Elasticity 1, no gravity: four balls and a triangle in a box. Two of them collide again
+    within a step and join an island; an impact inside it must keep its restitution (the
+    step ends when a gap closes, and the impact stage bounces), not close the gap and stop
+    there. Found by hypothesis (tests/test_properties.py) with the islands model: 10 % of the
+    energy lost at one wall."""
+    world = World(elasticity=1.0, contact="islands")
+    closed_box(world, 0.0, 0.0, 1.0, 1.0, thickness=0.05, elasticity=1.0)
+    for x, y in ((0.8222066421016825, 0.7413163439506529), (0.4256947138672555, 0.2744666198990672),
+                 (0.5105475018403333, 0.41106588558486257), (0.7654935800420298, 0.31599905524683664)):
+        world.add_circle((x, y), 0.03125, mass=1.0, velocity=(1.0, 0.0), elasticity=1.0)
+    x, y = 0.4781064506095289, 0.5780038979101817
+    triangle = [(-0.0078125, -0.01353164693413185), (0.03125, 0.0), (-0.0078125, 0.013531646934131855)]
+    world.add_polygon([(x + dx, y + dy) for dx, dy in triangle], mass=1.0, velocity=(1.0, 0.0), elasticity=1.0)
+    start = world.kinetic_energy()
+    world.run_until(10.0)
+    assert world.stats["joins"] >= 1 and world.stats["island_steps"] > 0
+    assert abs(world.kinetic_energy() - start) <= 1e-12 * start
 
 
 def test_contact_option_is_checked():

@@ -23,7 +23,8 @@ Gauss-Seidel) and, where a few sweeps do not converge, exactly: on the sweeps' a
 Stewart and Trinkle's formulation.
 
 Stages: ``_start`` (bodies to ``t``, velocities now, travel margins), ``_collect`` (the
-manifold), ``_prepare`` (lever arms, effective masses, targets, last step's impulses),
+manifold), ``_until_contact`` (the step's length: shorter where a bouncing impact is due),
+``_prepare`` (lever arms, effective masses, targets, last step's impulses),
 ``_impacts``, ``_end_targets`` and ``_solve`` (the forces), ``_finish`` (accelerations from
 the forces, the island's parts and the bodies that left it, the touch).
 """
@@ -61,6 +62,8 @@ from pge.core.tuning import (
     ISLAND_ITERATIONS,
     LCP_LIMIT,
     PUSH_RATE,
+    SHORTEST_STEP,
+    SIMULTANEOUS,
     SOLVE_TOLERANCE,
     TOUCHING,
 )
@@ -176,6 +179,16 @@ def _contact_key(i, j, key):
     return ((i << _BODY_BITS) | j) << _KEY_BITS | key
 
 
+@njit(cache=True, inline="always")
+def _touching(gap, closing, reach, window):
+    """Whether a point counts as touching now: its gap is below ``TOUCHING`` of its pair's
+    reach, or it closes within ``window`` (``SIMULTANEOUS`` of the step). Corners of a face
+    landing level to rounding, or on a face tilted by a rounding-sized angle, then take their
+    impact together, as one face, not one after the other (which would set the body
+    turning on a difference of 1e-7 in their gaps)."""
+    return gap <= TOUCHING * reach or gap <= closing * window
+
+
 @njit(cache=True)
 def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
     """Lever arms, effective masses, friction and target normal speeds of every row, and the
@@ -183,6 +196,7 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
     F = S[0]
     Q = S[4]
     rest_height = S[3][L.REST_HEIGHT]
+    window = SIMULTANEOUS * S[3][L.CONTACT_STEP]
     keys = np.empty(count, dtype=np.int64)
     for c in range(count):
         i = pairs[c, 2]
@@ -222,10 +236,10 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
         # bounces if it closes fast enough to bounce higher than the rest height; a point
         # with a gap may close by it within the step, no faster.
         reach = min(F[i, L.REACH], F[j, L.REACH])
-        if separation <= TOUCHING * reach:
-            ux = F[i, L.VX] - F[i, L.OMEGA] * ray - (F[j, L.VX] - F[j, L.OMEGA] * rby)
-            uy = F[i, L.VY] + F[i, L.OMEGA] * rax - (F[j, L.VY] + F[j, L.OMEGA] * rbx)
-            closing = -(ux * nx + uy * ny)
+        ux = F[i, L.VX] - F[i, L.OMEGA] * ray - (F[j, L.VX] - F[j, L.OMEGA] * rby)
+        uy = F[i, L.VY] + F[i, L.OMEGA] * rax - (F[j, L.VY] + F[j, L.OMEGA] * rbx)
+        closing = -(ux * nx + uy * ny)
+        if _touching(separation, closing, reach, window):
             e = combine(F[i, L.ELASTICITY], F[j, L.ELASTICITY], Q[L.RULE])
             pressing = max(math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]), math.hypot(F[j, L.FREE_AX], F[j, L.FREE_AY]))
             bounce = e * closing
@@ -917,30 +931,35 @@ def _parts(pairs, count, m):
 
 
 @njit(cache=True)
-def _finish(S, members, local, now, end, rows, pairs, count, h):
+def _finish(S, members, local, now, end, rows, pairs, count, h, speed):
     """Each body keeps the impact stage's velocity and spin ``now`` and, over the step, the
     constant acceleration and angular acceleration that bring it to the force stage's
     velocity and spin at the step's end, ``(end - now) / h``: the contact forces act over the
     step, not at its start, so a body held still has velocity and acceleration zero, and a
     contact that holds does no work. Then the island's parts; bodies with no contact leave it
     (free acceleration again, no angular acceleration); every body touched. Returns the
-    labels, the largest mean speed (a circle's spin counted only where a contact with
-    friction presses on it) over ``sqrt(|a| reach)``, and the deepest overlap of a point
-    over the smaller reach of its pair."""
+    labels, the largest mean speed over ``sqrt(|a| reach)`` (a circle's spin counted only
+    where it slips on a contact with friction that presses on it, beyond the solve's
+    tolerance of ``speed``), and the deepest overlap of a point over the smaller reach of
+    its pair."""
     F = S[0]
     I = S[1]
     labels = _parts(pairs, count, members.shape[0])
     pushed = np.zeros(members.shape[0], dtype=np.bool_)
-    gripped = np.zeros(members.shape[0], dtype=np.bool_)  # pressed on by a contact with friction
+    # slipping at a contact with friction that presses on it (an impulse that changes a
+    # speed by less than the solve's own tolerance is rounding, not a press)
+    rubbed = np.zeros(members.shape[0], dtype=np.bool_)
     for c in range(count):
         if rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0:
             pushed[pairs[c, 0]] = True
             if pairs[c, 1] >= 0:
                 pushed[pairs[c, 1]] = True
-        if rows[c, MU] > 0.0 and rows[c, LAMBDA_N] > 0.0:
-            gripped[pairs[c, 0]] = True
-            if pairs[c, 1] >= 0:
-                gripped[pairs[c, 1]] = True
+        if rows[c, MU] > 0.0 and rows[c, LAMBDA_N] * rows[c, KN] > SOLVE_TOLERANCE * speed:
+            ux, uy = _relative(end, pairs, rows, c)
+            if abs(-ux * rows[c, NY] + uy * rows[c, NX]) > SOLVE_TOLERANCE * speed:
+                rubbed[pairs[c, 0]] = True
+                if pairs[c, 1] >= 0:
+                    rubbed[pairs[c, 1]] = True
     fastest = 0.0
     for k in range(members.shape[0]):
         i = members[k]
@@ -959,10 +978,10 @@ def _finish(S, members, local, now, end, rows, pairs, count, h):
         reach = F[i, L.REACH]
         pull = math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]) * reach
         speed = 0.5 * math.hypot(now[k, 0] + end[k, 0], now[k, 1] + end[k, 1])
-        if I[i, L.KIND] != CIRCLE or gripped[k]:
-            # A circle's spin does not change its shape, and only friction feels it, where a
-            # contact presses: a circle pressed by no friction may spin on while its island
-            # sleeps.
+        if I[i, L.KIND] != CIRCLE or rubbed[k]:
+            # A circle's spin does not change its shape, and only friction feels it, where it
+            # slips: a circle that slips nowhere (pressed by no friction, or rolling on
+            # another circle turning with it) may spin on while its island sleeps.
             speed += 0.5 * abs(now[k, 2] + end[k, 2]) * reach
         if pull > 0.0:
             fastest = max(fastest, speed / math.sqrt(pull))
@@ -1026,21 +1045,81 @@ def _end_targets(rows, now, pairs, count):
 
 
 @njit(cache=True)
+def _until_contact(S, now, rows, pairs, count, h):
+    """The step's length: ``h``, or less where a point with a gap (wider than ``TOUCHING``
+    of its pair's reach) would close it sooner, with the velocities now and the free
+    accelerations (the earliest root of ``s + u t + a t^2 / 2``), fast enough to bounce
+    higher than the rest height. Stepping again when it closes lets the impact stage take
+    that impact with its restitution; a step across it would let the gap close and stop
+    there, an inelastic impact (which is right for a point that would not bounce, so such
+    points leave the step alone). A point that touches now (``_touching``) is the impact
+    stage's already. No shorter than ``SHORTEST_STEP`` of ``h``, so that time
+    always moves on."""
+    F = S[0]
+    Q = S[4]
+    rest_height = S[3][L.REST_HEIGHT]
+    window = SIMULTANEOUS * S[3][L.CONTACT_STEP]
+    length = h
+    for c in range(count):
+        i = pairs[c, 2]
+        j = pairs[c, 3]
+        gap = rows[c, SEPARATION]
+        reach = min(F[i, L.REACH], F[j, L.REACH])
+        nx = rows[c, NX]
+        ny = rows[c, NY]
+        rax = rows[c, PX] - F[i, L.X]
+        ray = rows[c, PY] - F[i, L.Y]
+        k = pairs[c, 0]
+        ux = now[k, 0] - now[k, 2] * ray
+        uy = now[k, 1] + now[k, 2] * rax
+        ax = F[i, L.FREE_AX]
+        ay = F[i, L.FREE_AY]
+        kb = pairs[c, 1]
+        if kb >= 0:
+            rbx = rows[c, PX] - F[j, L.X]
+            rby = rows[c, PY] - F[j, L.Y]
+            ux -= now[kb, 0] - now[kb, 2] * rby
+            uy -= now[kb, 1] + now[kb, 2] * rbx
+            ax -= F[j, L.FREE_AX]
+            ay -= F[j, L.FREE_AY]
+        u = ux * nx + uy * ny
+        a = ax * nx + ay * ny
+        if _touching(gap, -u, reach, window):
+            continue  # the impact stage takes it now
+        discriminant = u * u - 2.0 * a * gap
+        if discriminant < 0.0:
+            continue
+        below = -u + math.sqrt(discriminant)  # 2 gap / below is the earliest root, stably
+        if not below > 0.0:
+            continue
+        when = 2.0 * gap / below
+        if when >= length:
+            continue
+        bounce = -(u + a * when) * combine(F[i, L.ELASTICITY], F[j, L.ELASTICITY], Q[L.RULE])
+        pressing = max(math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]), math.hypot(F[j, L.FREE_AX], F[j, L.FREE_AY]))
+        if bounce > 0.0 and bounce * bounce > 2.0 * pressing * rest_height * reach:
+            length = when
+    return max(length, SHORTEST_STEP * h)
+
+
+@njit(cache=True)
 def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     """One step of the island made of ``members`` (body ids, all in one island) at time ``t``
     with step length ``h``; ``local`` is a scratch map of body id to position in ``members``
     (all -1, and left so). ``warm_keys`` (sorted) and ``warm_impulses`` are the last step's
     contacts and their impulses.
 
-    Returns ``(keys, impulses, labels, fastest, deepest, sweeps)``: this step's contacts
-    (sorted) and impulses for the next, each member's part of the island (-1: it touches
-    nothing and has left the island), the largest mean speed over ``sqrt(|a| reach)`` and
-    the deepest overlap over its pair's smaller reach (for sleep), and how many sweeps the
-    solve took.
+    Returns ``(keys, impulses, labels, fastest, deepest, sweeps, length)``: this step's
+    contacts (sorted) and impulses for the next, each member's part of the island (-1: it
+    touches nothing and has left the island), the largest mean speed over ``sqrt(|a| reach)``
+    and the deepest overlap over its pair's smaller reach (for sleep), how many sweeps the
+    solve took, and the step's length (``h``, or less where a gap closes sooner:
+    ``_until_contact``); the next step is due after it.
     """
     F = S[0]
     now, margin = _start(S, members, local, h, t)
     rows, pairs, count = _collect(S, members, local, margin, t)
+    h = _until_contact(S, now, rows, pairs, count, h)
     keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
     pull = 0.0
     for k in range(members.shape[0]):
@@ -1060,11 +1139,11 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         end[k, 2] = now[k, 2]
     _end_targets(rows, now, pairs, count)
     sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS)
-    labels, fastest, deepest = _finish(S, members, local, now, end, rows, pairs, count, h)
+    labels, fastest, deepest = _finish(S, members, local, now, end, rows, pairs, count, h, speed)
     S[13][L.S_ISLAND_STEPS] += 1
     order = np.argsort(keys)
     impulses = np.empty((count, 2))
     for c in range(count):
         impulses[c, 0] = rows[order[c], LAMBDA_N]
         impulses[c, 1] = rows[order[c], LAMBDA_T]
-    return keys[order], impulses, labels, fastest, deepest, sweeps
+    return keys[order], impulses, labels, fastest, deepest, sweeps, h

@@ -174,7 +174,7 @@ class Islands:
             self._local = np.full(2 * state.n, -1, dtype=np.int64)
         members = np.asarray(island.members, dtype=np.int64)
         state.ensure_events(2 * members.shape[0] + 16)
-        island.keys, island.impulses, labels, fastest, deepest, sweeps = step_island(
+        island.keys, island.impulses, labels, fastest, deepest, sweeps, length = step_island(
             state.S, members, self._local, self.step, t, island.keys, island.impulses
         )
         self.sweeps += sweeps
@@ -193,7 +193,7 @@ class Islands:
             self.islands[new] = Island(group)
             for i in group:
                 state.I[i, L.ISLAND] = new
-            self._schedule(new, t + self.step)
+            self._schedule(new, t + length)
         if fastest < SLEEP_SPEED and deepest <= SLEEP_OVERLAP:
             if island.still_since is None:
                 island.still_since = t
@@ -202,7 +202,7 @@ class Islands:
                 return
         else:
             island.still_since = None
-        self._schedule(k, t + self.step)
+        self._schedule(k, t + length)
 
     # ------------------------------------------------------------------ sleep
 

@@ -27,6 +27,12 @@ MIN_TICKS = 64.0
 
 #: seconds between two steps of an awake island (World(contact_step=...) overrides it)
 ISLAND_STEP = 1.0 / 240.0
+#: a step is cut short where a gap closes sooner (its impact then has its restitution), but
+#: never below this fraction of ISLAND_STEP, so that time moves on
+SHORTEST_STEP = 1e-6
+#: points of an island whose gaps close within this fraction of ISLAND_STEP of each other
+#: take their impacts together (a face landing level to rounding lands as a face)
+SIMULTANEOUS = 1e-3
 #: at most this many sweeps of the sequential-impulse solve at each step (it always returns)
 ISLAND_ITERATIONS = 400
 #: at most this many sweeps of the impact stage (inelastic, so every sweep only takes kinetic
