@@ -55,18 +55,20 @@ def test_corners_meeting_inside_an_island_never_loop_at_one_instant():
     assert [b.label() for b in corpus.escaped(world)] == []
 
 
-@pytest.mark.parametrize("seed", [27, 67, 187, 197])
-def test_no_island_falls_asleep_overlapping(seed):
+def test_no_island_falls_asleep_overlapping():
     # An overlap inside an island is pushed out over the following steps; an island that fell
     # asleep first would keep it for ever. In these scenes, run with islands, piles fell
     # asleep overlapping by up to 3e-6 (scene 67: a ball into the right wall). The bound is
     # SLEEP_OVERLAP (1e-8) of the smaller bounding radius, 1e-10 to 6e-10 here.
-    world = corpus.build(corpus.scene_spec(seed), "islands")
-    world.run_until(20.0)
-    sleeping = [
-        (a.label(), b.label(), depth)
-        for a, b, depth in world.overlaps()
-        if (a.asleep or b.asleep) and depth > SLEEP_OVERLAP * min(a.bounding_radius, b.bounding_radius)
-    ]
-    assert sleeping == []
-    assert any(body.asleep for body in world.bodies)
+    sleepers = 0
+    for seed in (27, 67, 187, 197):
+        world = corpus.build(corpus.scene_spec(seed), "islands")
+        world.run_until(20.0)
+        sleeping = [
+            (a.label(), b.label(), depth)
+            for a, b, depth in world.overlaps()
+            if (a.asleep or b.asleep) and depth > SLEEP_OVERLAP * min(a.bounding_radius, b.bounding_radius)
+        ]
+        assert sleeping == [], seed
+        sleepers += sum(body.asleep for body in world.bodies)
+    assert sleepers > 10  # the scenes do sleep: the first assertion is not vacuous

@@ -466,6 +466,7 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most):
             limit = rows[c, MU] * rows[c, LAMBDA_N]
             rows[c, LAMBDA_T] = min(max(rows[c, LAMBDA_T], -limit), limit)
             _push(F, vel, pairs, rows, c, 0.0, rows[c, LAMBDA_T])
+    warm = rows[:count, LAMBDA_N:LAMBDA_T + 1].copy()  # the last step's answer, as started
     for sweep in range(most):
         change = 0.0
         for q in range(blocks):
@@ -481,7 +482,7 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most):
                 change = max(change, _normal(F, vel, rows, pairs, c))
         if change == 0.0 or _residual(vel, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
             return sweep + 1
-        if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
+        if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm):
             return sweep + 1
     return most
 
@@ -779,12 +780,13 @@ def _lemke_solve(W, base, rows, pairs, row, count, nf):
 
 
 @njit(cache=True)
-def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
+def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm):
     """Solve the step's contacts exactly: a pushing point reaches its target normal speed
     and no point closes faster than it; a sliding pair's friction is ``mu`` times its normal
     impulses, against the slide; a sticking pair stops sliding, within the cone. First on
-    the sweeps' active set (``_active_set``: one linear solve, right at most steps of a
-    pile), else as a complementarity problem by Lemke's method (``_lemke_solve``). Replaces
+    the sweeps' active set, then on the last step's (``warm``, the impulses the sweeps
+    started from) (``_active_set``: one linear solve each, right at most steps of a pile),
+    else as a complementarity problem by Lemke's method (``_lemke_solve``). Replaces
     the impulses and velocities and returns true when the answer checks out
     (``_residual``); leaves them alone otherwise (a ray, or too many unknowns: the sweeps go
     on)."""
@@ -794,6 +796,12 @@ def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed):
         return False
     W, base, impulse, inverse = _operator(F, vel, rows, pairs, count, ja, jb, body_a, body_b, row)
     fresh, ok = _active_set(W, base, rows, pairs, row, count, nf, impulse)
+    if not ok:
+        # the last step's active set: a pile's contacts mostly keep theirs from step to step
+        last = np.empty(n)
+        for k in range(n):
+            last[k] = warm[row[k], 0] if k < count else warm[row[k], 1]
+        fresh, ok = _active_set(W, base, rows, pairs, row, count, nf, last)
     if not ok:
         fresh, ok = _lemke_solve(W, base, rows, pairs, row, count, nf)
         if not ok:
