@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from pge._jit_cache import njit
 
 #: relative safety factor against rounding in the bounds below.
 SAFETY = 1.0 + 1e-9

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from pge._jit_cache import njit
 
 from pge.core import layout as L
 from pge.core.grid import gather

@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from pge._jit_cache import njit
 
 from pge.core import layout as L
 from pge.core.contact import (

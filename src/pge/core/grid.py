@@ -10,7 +10,7 @@ outside the grid are clamped to the border cells, which keeps it sound.
 
 from __future__ import annotations
 
-from numba import njit
+from pge._jit_cache import njit
 
 from pge.core import layout as L
 

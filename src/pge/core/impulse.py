@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from pge._jit_cache import njit
 
 @njit(cache=True, inline="always")
 def energy_change(jn, jt, un, ut, knn, knt, ktt):

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from pge._jit_cache import njit
 
 from pge.broadphase.bounds import cannot_touch_before, lecture_cannot_touch, swept_range, travel_horizon
 from pge.core import layout as L

@@ -10,7 +10,7 @@ its bodies and is dropped when popped if one has moved on.
 
 from __future__ import annotations
 
-from numba import njit
+from pge._jit_cache import njit
 
 from pge.core import layout as L
 

@@ -9,7 +9,7 @@ through its centre).
 
 from __future__ import annotations
 
-from numba import njit
+from pge._jit_cache import njit
 
 from pge.core import layout as L
 

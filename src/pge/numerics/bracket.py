@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from pge._jit_cache import njit
 
 __all__ = [
     "TIME_TOLERANCE",

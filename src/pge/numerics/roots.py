@@ -42,7 +42,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from pge._jit_cache import njit
 
 __all__ = [
     "evaluate",

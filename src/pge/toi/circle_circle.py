@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from pge._jit_cache import njit
 
 from pge.numerics.roots import first_descent, first_descent_quadratic
 

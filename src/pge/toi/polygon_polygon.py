@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from pge._jit_cache import njit
 
 from pge.numerics.roots import first_descent_quadratic
 

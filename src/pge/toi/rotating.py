@@ -79,7 +79,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from pge._jit_cache import njit
 
 from pge.numerics.bracket import (
     curvature_step,
