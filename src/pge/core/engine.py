@@ -114,6 +114,16 @@ def touch_group(S, ids, count):
 
 
 @njit(cache=True)
+def touch_one(S, i):
+    """``touch`` as a call, for the places that may do without it inlined.
+
+    Every inlined copy of ``touch`` (with ``place`` and the queue inside it) is typed and
+    compiled again, seconds each on a cold start; a call costs a few nanoseconds an event.
+    """
+    touch(S, i)
+
+
+@njit(cache=True)
 def release_body(S, i, t, out):
     """Wake body ``i``'s island (if asleep) or, for a fixed body, the islands near it;
     release it from its support (if resting) and every body resting on it; the pile it
@@ -393,9 +403,9 @@ def collide_free(S, a, b, feature, t):
     if join == 0.0 and (I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0):
         join = 2.0  # no join, but an island is hit: Python wakes it if it sleeps
     if I[a, L.FIXED] == 0:
-        touch(S, a)
+        touch_one(S, a)
     if I[b, L.FIXED] == 0:
-        touch(S, b)
+        touch_one(S, b)
     out[L.OUT_TIME] = t
     out[L.OUT_A] = a
     out[L.OUT_B] = b
@@ -732,7 +742,7 @@ def run(S, until, notify_all):
         elif kind == L.HORIZON_EVENT:
             stats[L.S_EVENTS] += 1
             stats[L.S_HORIZONS] += 1
-            touch(S, a)
+            touch_one(S, a)
         elif kind == L.TIMER:
             out[L.OUT_TIME] = t
             out[L.OUT_ID] = a
