@@ -610,7 +610,7 @@ def append_riders(I, s, out, count):
     return count
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def release_riders(S, s, out, count, t):
     """Release every body resting on ``s``, directly or through others.
 

@@ -426,7 +426,7 @@ def _sliding_sign(S, x, t):
     return _sign(slip)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _sign(value):
     """1, -1 or 0 as ``value`` is positive, negative or zero."""
     if value > 0.0:

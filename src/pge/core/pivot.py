@@ -459,7 +459,7 @@ def lift_gain(F, a, b, pre):
     return gain
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _kinetic(F, x, vx, vy, w):
     """Kinetic energy of body ``x`` (not fixed) at velocity ``(vx, vy)`` and spin ``w``."""
     spin = 0.5 * w * w / F[x, L.INV_INERTIA] if F[x, L.INV_INERTIA] > 0.0 else 0.0

@@ -48,7 +48,7 @@ BALANCE = 1e-6
 RETRY_FACTOR = 1.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def asleep(I, x):
     """True if body ``x`` is asleep."""
     return I[x, L.SLEEP_NEXT] >= 0
@@ -81,14 +81,14 @@ def wake(S, x, out, count, t):
     return count
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _pivot_speed(F, P, x):
     """The pivot rule's lift speed for body ``x`` under its own free acceleration."""
     accel = math.hypot(F[x, L.FREE_AX], F[x, L.FREE_AY])
     return math.sqrt(2.0 * accel * P[L.REST_HEIGHT] * F[x, L.REACH])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _nearly_still(F, I, P, x, t):
     """True if body ``x`` (not fixed) moves slower than ``STILL_FACTOR`` pivot speeds."""
     vx = F[x, L.VX] + F[x, L.AX] * (t - F[x, L.T0])
@@ -182,7 +182,7 @@ def try_sleep(S, a, b, out, count, t):
     return True, count
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _retry(F, P, x):
     """How long after a failed attempt body ``x`` waits before trying again."""
     accel = math.hypot(F[x, L.FREE_AX], F[x, L.FREE_AY])
@@ -271,7 +271,7 @@ def _touching_points(S, i, j, tolerance, pairs, geometry, points):
     return points
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _append(pairs, geometry, points, i, j, px, py, nx, ny):
     if points < 0 or points >= pairs.shape[0]:
         return -1
@@ -318,7 +318,7 @@ def _circle_gap(F, I, OL, c, g):
     return nearest - F[c, L.RADIUS], nx, ny
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _face_separation(F, I, OL, o, f, other):
     """Least distance of ``other``'s corners beyond face ``f`` of polygon ``o``."""
     row = I[o, L.OUTLINE_START] + f
