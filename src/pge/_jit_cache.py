@@ -65,7 +65,7 @@ def njit(func=None, **options):
     Numba's own dispatchers, called from compiled code with a constant argument
     (``wake(S, a, group, 0, t)``, ``presses_into_neighbour(..., False, t)``), type
     it as a literal (``Literal[int](0)``) and compile a separate version of the
-    callee, and of everything it calls, for every distinct constant: a fifth of
+    callee, and of everything it calls, for every distinct constant: one in eight of
     the signatures of a cold start were such duplicates. Here a call's argument
     types lose their literal values before the callee is chosen, so every call
     site shares one version; LLVM still sees the constant wherever it inlines.
