@@ -593,6 +593,15 @@ def _in_block(pairs, count, first):
     return first + 1 < count and pairs[first + 1, 2] == pairs[first, 2] and pairs[first + 1, 3] == pairs[first, 3]
 
 
+@njit(cache=True, inline="always")
+def _load(normal, pairs, count, first):
+    """The normal impulse (from ``normal``, indexed by row) on the pair whose first row is
+    ``first``: one point's, or its two points' together."""
+    if _in_block(pairs, count, first):
+        return normal[first] + normal[first + 1]
+    return normal[first]
+
+
 @njit(cache=True)
 def _cholesky_solve(A, b):
     """Solve ``A x = b`` for symmetric positive definite ``A`` (Cholesky); ``ok`` false when
@@ -644,10 +653,7 @@ def _active_set(W, base, rows, pairs, row, count, nf, impulse):
     sign = np.zeros(nf)
     for f in range(nf):
         first = row[count + f]
-        load = impulse[first]
-        if _in_block(pairs, count, first):
-            load += impulse[first + 1]
-        limit = rows[first, MU] * load
+        limit = rows[first, MU] * _load(impulse, pairs, count, first)
         if abs(impulse[count + f]) < limit * (1.0 - 1e-9):
             unknown[count + f] = m
             m += 1
@@ -720,10 +726,7 @@ def _active_set(W, base, rows, pairs, row, count, nf, impulse):
         else:
             f = k - count
             first = row[k]
-            load = fresh[first]
-            if _in_block(pairs, count, first):
-                load += fresh[first + 1]
-            if unknown[k] >= 0 and abs(fresh[k]) > rows[first, MU] * load * (1.0 + 1e-9):
+            if unknown[k] >= 0 and abs(fresh[k]) > rows[first, MU] * _load(fresh, pairs, count, first) * (1.0 + 1e-9):
                 return impulse, False
             if sign[f] * speed > tolerance:
                 return impulse, False
@@ -837,7 +840,7 @@ def _blocks(pairs, count):
     c = 0
     while c < count:
         starts[blocks] = c
-        if c + 1 < count and pairs[c + 1, 2] == pairs[c, 2] and pairs[c + 1, 3] == pairs[c, 3]:
+        if _in_block(pairs, count, c):
             sizes[blocks] = 2
         else:
             sizes[blocks] = 1
@@ -1075,19 +1078,12 @@ def _until_contact(S, now, rows, pairs, count, h):
         reach = min(F[i, L.REACH], F[j, L.REACH])
         nx = rows[c, NX]
         ny = rows[c, NY]
-        rax = rows[c, PX] - F[i, L.X]
-        ray = rows[c, PY] - F[i, L.Y]
-        k = pairs[c, 0]
-        ux = now[k, 0] - now[k, 2] * ray
-        uy = now[k, 1] + now[k, 2] * rax
+        ux, uy = _relative_at(
+            now, pairs, c, rows[c, PX] - F[i, L.X], rows[c, PY] - F[i, L.Y], rows[c, PX] - F[j, L.X], rows[c, PY] - F[j, L.Y]
+        )
         ax = F[i, L.FREE_AX]
         ay = F[i, L.FREE_AY]
-        kb = pairs[c, 1]
-        if kb >= 0:
-            rbx = rows[c, PX] - F[j, L.X]
-            rby = rows[c, PY] - F[j, L.Y]
-            ux -= now[kb, 0] - now[kb, 2] * rby
-            uy -= now[kb, 1] + now[kb, 2] * rbx
+        if pairs[c, 1] >= 0:  # a fixed body does not accelerate
             ax -= F[j, L.FREE_AX]
             ay -= F[j, L.FREE_AY]
         u = ux * nx + uy * ny
