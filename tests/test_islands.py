@@ -470,3 +470,48 @@ def test_redundant_contacts_never_make_the_exact_finish_return_nan():
     world.run_until(8.0)
     assert np.isfinite(world.positions()).all()
     assert all(math.isfinite(b.angular_velocity) and all(map(math.isfinite, b.velocity)) for b in world.bodies)
+
+
+def test_an_overlap_is_pushed_out_as_a_displacement_that_leaves_no_speed():
+    """A box sunk 1e-4 into the floor (by hand, white-box) rises out of it at PUSH_RATE of
+    the depth per step, never above the face, and every step ends with the box as still as
+    the force stage leaves it: the push-out's lift at a step's start is taken back over it.
+    A step cut short (here: the World changes the box's friction mid-step) takes back the
+    rest of the lift at once."""
+    import pge.contact.islands as islands_module
+    from pge.core.tuning import PUSH_RATE, PUSH_SLOP
+
+    world = _floor_world()
+    box = world.add_box(-0.1, 0.0, 0.2, 0.2, mass=1.0, friction=0.5, elasticity=0.5)
+    world.run_until(1.0)
+    assert box.asleep and box.position[1] == 0.1
+    world._state.F[box.id, L.Y] -= 1e-4
+    world._islands.wake_near(box.id)
+    depths = []
+    original = islands_module.step_island
+
+    def spy(*args):
+        result = original(*args)
+        depths.append(0.1 - box.position[1])
+        return result
+
+    islands_module.step_island = spy
+    try:
+        highest = 0.0
+        for k in range(1, 200):
+            world.run_until(1.0 + k * ISLAND_STEP / 4)
+            highest = max(highest, box.position[1])
+            if k == 2:  # a World change half-way through a step: the step is cut short
+                box.friction = 0.6
+    finally:
+        islands_module.step_island = original
+    assert highest <= 0.1 + 1e-12
+    # each full step takes PUSH_RATE of the depth left (1e-4 at the first)
+    assert depths[0] == pytest.approx(1e-4, rel=1e-9)
+    slop = PUSH_SLOP * box.bounding_radius
+    assert 0.0 <= depths[-1] <= slop  # what is left is below the slop, and never a gap
+    # no speed is left where a step ends: at each step the box starts from rest, so the
+    # step before it moved it by exactly PUSH_RATE of its depth
+    ratios = [after / before for before, after in zip(depths[2:], depths[3:]) if before > slop]
+    assert len(ratios) > 5
+    assert max(abs(r - (1.0 - PUSH_RATE)) for r in ratios) < 1e-6

@@ -10,14 +10,17 @@ travel) are solved together with Coulomb friction, in two stages:
   bounces if it would bounce higher than the rest height; a point with a gap may close by it
   within the step and no faster);
 * **forces**: the contact forces over the coming step, each constant, found as impulses on
-  the velocities at the step's *end* (``v + h a`` without them): a touching point stops
-  closing, a gap closes by itself at most, an overlap is pushed out by ``PUSH_RATE`` of its
-  depth, a sticking pair stops sliding, a sliding one takes ``mu`` times its normal force.
-  The forces become each body's acceleration and angular acceleration until the next step,
-  so a point's normal speed is linear over the step and a body held still has velocity and
-  acceleration exactly zero: a contact that holds does no work.
+  the velocities at the step's *end* (``v + h a`` without them): a touching or overlapping
+  point stops closing, a gap closes by itself at most, a sticking pair stops sliding, a
+  sliding one takes ``mu`` times its normal force. The forces become each body's
+  acceleration and angular acceleration until the next step, so a point's normal speed is
+  linear over the step and a body held still has velocity and acceleration exactly zero: a
+  contact that holds does no work;
+* **push-out**: overlaps are moved out by ``PUSH_RATE`` of their depth, as a displacement
+  over the step: a velocity change at its start taken back by an equal and opposite one
+  spread over it, so the velocities at the step's end are the force stage's.
 
-Each stage is a complementarity problem, solved by sequential impulses (projected
+Each stage is a complementarity problem (the push-out without friction), solved by sequential impulses (projected
 Gauss-Seidel) and, where a few sweeps do not converge, exactly: on the sweeps' active set
 (one linear solve) where they found it, else by Lemke's method (``pge.numerics.lcp``) on
 Stewart and Trinkle's formulation.
@@ -25,8 +28,9 @@ Stewart and Trinkle's formulation.
 Stages: ``_start`` (bodies to ``t``, velocities now, travel margins), ``_collect`` (the
 manifold), ``_until_contact`` (the step's length: shorter where a bouncing impact is due),
 ``_prepare`` (lever arms, effective masses, targets, last step's impulses),
-``_impacts``, ``_end_targets`` and ``_solve`` (the forces), ``_finish`` (accelerations from
-the forces, the island's parts and the bodies that left it, the touch).
+``_impacts``, ``_end_targets`` and ``_solve`` (the forces), ``_push_out``, ``_finish``
+(accelerations from the forces and the push-out, the island's parts and the bodies that left
+it, the touch).
 """
 
 from __future__ import annotations
@@ -62,6 +66,7 @@ from pge.core.tuning import (
     ISLAND_ITERATIONS,
     LCP_LIMIT,
     PUSH_RATE,
+    PUSH_SLOP,
     SHORTEST_STEP,
     SIMULTANEOUS,
     SOLVE_TOLERANCE,
@@ -227,11 +232,8 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
         rows[c, KT] = ma + mb + ia * rat * rat + ib * rbt * rbt
         rows[c, MU] = combine(F[i, L.FRICTION], F[j, L.FRICTION], Q[L.FRICTION_RULE])
         separation = rows[c, SEPARATION]
-        if separation > 0.0:
-            target = -separation / h  # may close by its gap, no more
-        else:
-            target = -PUSH_RATE * separation / h
-        rows[c, TARGET] = target
+        # may close by its gap, no more; an overlap stops closing (``_push_out`` moves it out)
+        rows[c, TARGET] = -separation / h if separation > 0.0 else 0.0
         # The impact stage, on the velocities now: a touching point stops closing, or
         # bounces if it closes fast enough to bounce higher than the rest height; a point
         # with a gap may close by it within the step, no faster.
@@ -942,12 +944,13 @@ def _parts(pairs, count, m):
 
 
 @njit(cache=True)
-def _finish(S, members, local, now, end, rows, pairs, count, h, speed):
-    """Each body keeps the impact stage's velocity and spin ``now`` and, over the step, the
-    constant acceleration and angular acceleration that bring it to the force stage's
-    velocity and spin at the step's end, ``(end - now) / h``: the contact forces act over the
-    step, not at its start, so a body held still has velocity and acceleration zero, and a
-    contact that holds does no work. Then the island's parts; bodies with no contact leave it
+def _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed):
+    """Each body keeps the impact stage's velocity and spin ``now`` plus the push-out's
+    ``lift`` and, over the step, the constant acceleration and angular acceleration that
+    bring it to the force stage's velocity and spin at the step's end,
+    ``(end - now - lift) / h``: the contact forces act over the step, not at its start, so a
+    body held still has velocity and acceleration zero, a contact that holds does no work,
+    and the push-out moves a body without leaving it a speed. Then the island's parts; bodies with no contact leave it
     (free acceleration again, no angular acceleration); every body touched. Returns the
     labels, the largest mean speed over ``sqrt(|a| reach)`` (a circle's spin counted only
     where it slips on a contact with friction that presses on it, beyond the solve's
@@ -975,13 +978,14 @@ def _finish(S, members, local, now, end, rows, pairs, count, h, speed):
     for k in range(members.shape[0]):
         i = members[k]
         local[i] = -1
-        F[i, L.VX] = now[k, 0]
-        F[i, L.VY] = now[k, 1]
-        F[i, L.OMEGA] = now[k, 2]
-        if pushed[k] and labels[k] >= 0:
-            F[i, L.AX] = (end[k, 0] - now[k, 0]) / h
-            F[i, L.AY] = (end[k, 1] - now[k, 1]) / h
-            F[i, L.ALPHA] = (end[k, 2] - now[k, 2]) / h
+        lifted = lift[k, 0] != 0.0 or lift[k, 1] != 0.0 or lift[k, 2] != 0.0
+        F[i, L.VX] = now[k, 0] + lift[k, 0]
+        F[i, L.VY] = now[k, 1] + lift[k, 1]
+        F[i, L.OMEGA] = now[k, 2] + lift[k, 2]
+        if (pushed[k] or lifted) and labels[k] >= 0:
+            F[i, L.AX] = (end[k, 0] - F[i, L.VX]) / h
+            F[i, L.AY] = (end[k, 1] - F[i, L.VY]) / h
+            F[i, L.ALPHA] = (end[k, 2] - F[i, L.OMEGA]) / h
         else:
             F[i, L.AX] = F[i, L.FREE_AX]
             F[i, L.AY] = F[i, L.FREE_AY]
@@ -1056,6 +1060,45 @@ def _end_targets(rows, now, pairs, count):
 
 
 @njit(cache=True)
+def _push_out(F, now, end, rows, pairs, count, h, down_x, down_y):
+    """The push-out stage: each body's velocity change ``lift`` at the step's start that
+    moves its overlaps out by ``PUSH_RATE`` of their depth, taken back by an equal and
+    opposite change spread over the step, so that it moves the bodies and leaves their
+    velocities at the step's end (and so their energy) as the force stage found them: a
+    displacement, not a speed. Kept as a speed, a push-out pumps energy into piles that are
+    jammed or keep bouncing.
+
+    Over a step a point's normal speed moves linearly from ``now`` to ``end``; the lift adds
+    ``lift (1 - s / h)`` to it, so it moves the point by ``h lift / 2``. The lifts solve, by
+    sequential impulses on the normals (never pulling), for each point the separation it
+    would have at the step's end without them, ``e``: moved out by at least ``PUSH_RATE``
+    of ``-e`` where ``e < 0``, closed by at most ``e`` where ``e >= 0``. Returns the lifts
+    (all zero where nothing overlaps)."""
+    m = now.shape[0]
+    lift = np.zeros((m, 3))
+    need = np.empty(count)
+    largest = 0.0
+    for c in range(count):
+        ux, uy = _relative(now, pairs, rows, c)
+        wx, wy = _relative(end, pairs, rows, c)
+        moved = 0.5 * h * ((ux + wx) * rows[c, NX] + (uy + wy) * rows[c, NY])
+        left = rows[c, SEPARATION] + moved
+        need[c] = -2.0 * (PUSH_RATE * left if left < 0.0 else left) / h
+        reach = min(F[pairs[c, 2], L.REACH], F[pairs[c, 3], L.REACH])
+        if left < -PUSH_SLOP * reach:
+            largest = max(largest, need[c])
+    if not largest > 0.0:
+        return lift, 0
+    pushing = rows[:count].copy()
+    pushing[:, TARGET] = need
+    pushing[:, LAMBDA_N] = 0.0
+    pushing[:, LAMBDA_T] = 0.0
+    pushing[:, MU] = 0.0
+    sweeps = _solve(F, lift, pushing, pairs, count, largest, down_x, down_y, ISLAND_ITERATIONS)
+    return lift, sweeps
+
+
+@njit(cache=True)
 def _until_contact(S, now, rows, pairs, count, h):
     """The step's length: ``h``, or less where a point with a gap (wider than ``TOUCHING``
     of its pair's reach) would close it sooner, with the velocities now and the free
@@ -1113,12 +1156,13 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     (all -1, and left so). ``warm_keys`` (sorted) and ``warm_impulses`` are the last step's
     contacts and their impulses.
 
-    Returns ``(keys, impulses, labels, fastest, deepest, sweeps, length)``: this step's
+    Returns ``(keys, impulses, labels, fastest, deepest, sweeps, length, lift)``: this step's
     contacts (sorted) and impulses for the next, each member's part of the island (-1: it
     touches nothing and has left the island), the largest mean speed over ``sqrt(|a| reach)``
     and the deepest overlap over its pair's smaller reach (for sleep), how many sweeps the
-    solve took, and the step's length (``h``, or less where a gap closes sooner:
-    ``_until_contact``); the next step is due after it.
+    solve took, the step's length (``h``, or less where a gap closes sooner:
+    ``_until_contact``; the next step is due after it), and each member's push-out lift
+    (``_push_out``), which the step takes back over its length.
     """
     F = S[0]
     now, margin = _start(S, members, local, h, t)
@@ -1143,11 +1187,13 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         end[k, 2] = now[k, 2]
     _end_targets(rows, now, pairs, count)
     sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS)
-    labels, fastest, deepest = _finish(S, members, local, now, end, rows, pairs, count, h, speed)
+    lift, pushes = _push_out(F, now, end, rows, pairs, count, h, down_x, down_y)
+    sweeps += pushes
+    labels, fastest, deepest = _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed)
     S[13][L.S_ISLAND_STEPS] += 1
     order = np.argsort(keys)
     impulses = np.empty((count, 2))
     for c in range(count):
         impulses[c, 0] = rows[order[c], LAMBDA_N]
         impulses[c, 1] = rows[order[c], LAMBDA_T]
-    return keys[order], impulses, labels, fastest, deepest, sweeps, h
+    return keys[order], impulses, labels, fastest, deepest, sweeps, h, lift

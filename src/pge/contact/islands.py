@@ -50,6 +50,9 @@ class Islands:
         self.islands: dict[int, Island] = {}
         self._next = 0
         self._local = np.full(64, -1, dtype=np.int64)
+        # per body: its last step's push-out lift, and that step's start and end
+        self._lift = np.zeros((64, 3))
+        self._lift_span = np.zeros((64, 2))
         self.sweeps = 0  # solver sweeps over all steps (World.stats["island_sweeps"])
 
     # ------------------------------------------------------------------ queries
@@ -124,6 +127,7 @@ class Islands:
         island.members.remove(i)
         state = self.world._state
         state.I[i, L.ISLAND] = -1
+        self._unlift(i, self.world.time)
         engine.advance(state.F, i, self.world.time)  # free of its contact forces from now on
         state.F[i, L.AX] = state.F[i, L.FREE_AX]
         state.F[i, L.AY] = state.F[i, L.FREE_AY]
@@ -159,6 +163,22 @@ class Islands:
         self._cancel(island)
         island.timer = self.world._at_time_internal(t, lambda when, k=k: self._step(k, when))
 
+    def _unlift(self, i: int, t: float) -> None:
+        """Take back from body ``i`` at ``t`` what its last step's push-out lift left in its
+        velocity: all of it once the step has run its length, which is the step's own
+        doing; the rest when the step is cut short (a collision, a World change, leaving
+        the island), so that the push-out moves a body and never leaves it a speed."""
+        start, until = self._lift_span[i]
+        lift = self._lift[i]
+        if t < until and (lift[0] != 0.0 or lift[1] != 0.0 or lift[2] != 0.0):
+            F = self.world._state.F
+            engine.advance(F, i, t)
+            share = (until - t) / (until - start)
+            F[i, L.VX] -= share * lift[0]
+            F[i, L.VY] -= share * lift[1]
+            F[i, L.OMEGA] -= share * lift[2]
+        lift[:] = 0.0
+
     def _cancel(self, island: Island) -> None:
         if island.timer is not None:
             self.world._timers.pop(island.timer, None)
@@ -172,11 +192,22 @@ class Islands:
         state = self.world._state
         if self._local.shape[0] < state.n:
             self._local = np.full(2 * state.n, -1, dtype=np.int64)
+            grown = np.zeros((2 * state.n, 3))
+            grown[: self._lift.shape[0]] = self._lift
+            self._lift = grown
+            grown = np.zeros((2 * state.n, 2))
+            grown[: self._lift_span.shape[0]] = self._lift_span
+            self._lift_span = grown
         members = np.asarray(island.members, dtype=np.int64)
+        for i in island.members:
+            self._unlift(i, t)
         state.ensure_events(2 * members.shape[0] + 16)
-        island.keys, island.impulses, labels, fastest, deepest, sweeps, length = step_island(
+        island.keys, island.impulses, labels, fastest, deepest, sweeps, length, lift = step_island(
             state.S, members, self._local, self.step, t, island.keys, island.impulses
         )
+        self._lift[members] = lift
+        self._lift_span[members, 0] = t
+        self._lift_span[members, 1] = t + length
         self.sweeps += sweeps
         parts: dict[int, list[int]] = {}
         for i, label in zip(members.tolist(), labels.tolist()):
@@ -213,6 +244,7 @@ class Islands:
         I = self.world._state.I
         for i in island.members:
             engine.advance(F, i, now)
+            self._lift[i] = 0.0
             F[i, L.VX] = F[i, L.VY] = 0.0
             pull = math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]) * F[i, L.REACH]
             if I[i, L.KIND] != CIRCLE or abs(F[i, L.OMEGA]) * F[i, L.REACH] < SLEEP_SPEED * math.sqrt(pull):

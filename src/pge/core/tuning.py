@@ -52,7 +52,10 @@ LCP_LIMIT = 240
 #: the smaller bounding radius (so that resting contacts stay listed)
 CONTACT_MARGIN = 0.01
 #: the part of an overlap a step pushes out (the rest at the following steps)
-PUSH_RATE = 0.2
+PUSH_RATE = 0.8
+#: ... where some point overlaps by more than this times its pair's smaller bounding radius
+#: (overlaps of rounding's size are only kept from growing)
+PUSH_SLOP = 1e-10
 #: a gap below this times the smaller bounding radius is touching (restitution may act)
 TOUCHING = 1e-6
 #: polygons' reference face: the second polygon's face only if its separation is larger by
