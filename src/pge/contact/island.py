@@ -20,10 +20,10 @@ travel) are solved together with Coulomb friction, in two stages:
   over the step: a velocity change at its start taken back by an equal and opposite one
   spread over it, so the velocities at the step's end are the force stage's.
 
-Each stage is a complementarity problem (the push-out without friction), solved by sequential impulses (projected
-Gauss-Seidel) and, where a few sweeps do not converge, exactly: on the sweeps' active set
-(one linear solve) where they found it, else by Lemke's method (``pge.numerics.lcp``) on
-Stewart and Trinkle's formulation.
+Each stage is a complementarity problem (the push-out without friction), solved by
+sequential impulses (projected Gauss-Seidel) and, where a few sweeps do not converge,
+exactly: on the sweeps' active set (one linear solve) where they found it, else by Lemke's
+method (``pge.numerics.lcp``) on Stewart and Trinkle's formulation.
 
 Stages: ``_start`` (bodies to ``t``, velocities now, travel margins), ``_collect`` (the
 manifold), ``_until_contact`` (the step's length: shorter where a bouncing impact is due),
@@ -950,8 +950,9 @@ def _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed):
     bring it to the force stage's velocity and spin at the step's end,
     ``(end - now - lift) / h``: the contact forces act over the step, not at its start, so a
     body held still has velocity and acceleration zero, a contact that holds does no work,
-    and the push-out moves a body without leaving it a speed. Then the island's parts; bodies with no contact leave it
-    (free acceleration again, no angular acceleration); every body touched. Returns the
+    and the push-out moves a body without leaving it a speed. Then the island's parts;
+    bodies with no contact leave it (free acceleration again, no angular acceleration);
+    every body touched. Returns the
     labels, the largest mean speed over ``sqrt(|a| reach)`` (a circle's spin counted only
     where it slips on a contact with friction that presses on it, beyond the solve's
     tolerance of ``speed``), and the deepest overlap of a point over the smaller reach of
@@ -1069,11 +1070,12 @@ def _push_out(F, now, end, rows, pairs, count, h, down_x, down_y):
     jammed or keep bouncing.
 
     Over a step a point's normal speed moves linearly from ``now`` to ``end``; the lift adds
-    ``lift (1 - s / h)`` to it, so it moves the point by ``h lift / 2``. The lifts solve, by
-    sequential impulses on the normals (never pulling), for each point the separation it
-    would have at the step's end without them, ``e``: moved out by at least ``PUSH_RATE``
-    of ``-e`` where ``e < 0``, closed by at most ``e`` where ``e >= 0``. Returns the lifts
-    (all zero where nothing overlaps)."""
+    ``lift (1 - s / h)`` to it, so it moves the point by ``h lift / 2``. The lifts are
+    normal impulses (never pulling, no friction), solved by ``_solve`` like the forces, on
+    the separation ``e`` each point would have at the step's end without them: moved out by
+    at least ``PUSH_RATE`` of ``-e`` where ``e < 0``, closed by at most ``e`` where
+    ``e >= 0``. Nothing is solved unless some point overlaps by more than ``PUSH_SLOP`` of
+    its pair's smaller reach. Returns the lifts (all zero then) and the sweeps taken."""
     m = now.shape[0]
     lift = np.zeros((m, 3))
     need = np.empty(count)

@@ -27,6 +27,13 @@ _NO_KEYS = np.zeros(0, dtype=np.int64)
 _NO_IMPULSES = np.zeros((0, 2))
 
 
+def _grown(rows: np.ndarray, n: int) -> np.ndarray:
+    """``rows`` with zero rows added up to ``n`` in all."""
+    grown = np.zeros((n,) + rows.shape[1:])
+    grown[: rows.shape[0]] = rows
+    return grown
+
+
 class Island:
     """One island: its bodies, its warm-start contacts, its timer and its sleep."""
 
@@ -192,12 +199,8 @@ class Islands:
         state = self.world._state
         if self._local.shape[0] < state.n:
             self._local = np.full(2 * state.n, -1, dtype=np.int64)
-            grown = np.zeros((2 * state.n, 3))
-            grown[: self._lift.shape[0]] = self._lift
-            self._lift = grown
-            grown = np.zeros((2 * state.n, 2))
-            grown[: self._lift_span.shape[0]] = self._lift_span
-            self._lift_span = grown
+            self._lift = _grown(self._lift, 2 * state.n)
+            self._lift_span = _grown(self._lift_span, 2 * state.n)
         members = np.asarray(island.members, dtype=np.int64)
         for i in island.members:
             self._unlift(i, t)
