@@ -237,8 +237,11 @@ def test_pge_view_prints_the_url_serves_and_stops_on_ctrl_c(small):
         status, body, _ = get(found.group(0) + "data.json")
         assert status == 200 and len(json.loads(body)["frames"]) == 11
         process.send_signal(signal.SIGINT)  # what Ctrl-C sends
-        assert process.wait(timeout=30) == 0
-        assert "stopped" in process.stderr.read()
+        # communicate, not wait: it drains the pipes, so a child that writes on its way out
+        # cannot block on a full one
+        _, err = process.communicate(timeout=30)
+        assert process.returncode == 0, err
+        assert "stopped" in err
     finally:
         if process.poll() is None:
             process.kill()
