@@ -222,7 +222,7 @@ def test_pge_view_prints_the_url_serves_and_stops_on_ctrl_c(small):
     import subprocess
     import sys
 
-    env = dict(os.environ, PYTHONUNBUFFERED="1")
+    env = dict(os.environ, PYTHONUNBUFFERED="1", PYTHONFAULTHANDLER="1")
     process = subprocess.Popen(
         [sys.executable, "-m", "pge.cli", "view", str(small), "--no-browser"],
         stdout=subprocess.PIPE,
@@ -239,7 +239,12 @@ def test_pge_view_prints_the_url_serves_and_stops_on_ctrl_c(small):
         process.send_signal(signal.SIGINT)  # what Ctrl-C sends
         # communicate, not wait: it drains the pipes, so a child that writes on its way out
         # cannot block on a full one
-        _, err = process.communicate(timeout=30)
+        try:
+            _, err = process.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            process.send_signal(signal.SIGABRT)  # faulthandler: where every thread of it is
+            _, err = process.communicate()
+            pytest.fail("pge view did not stop within 30 s of Ctrl-C; its threads:\n" + err[-6000:])
         assert process.returncode == 0, err
         assert "stopped" in err
     finally:
