@@ -229,6 +229,9 @@ def test_pge_view_prints_the_url_serves_and_stops_on_ctrl_c(small):
         stderr=subprocess.PIPE,
         text=True,
         env=env,
+        # as from a terminal: a process started in the background by a shell without job
+        # control (CI scripts, nohup ... &) has SIGINT ignored, and its children inherit that
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     try:
         line = process.stdout.readline()
