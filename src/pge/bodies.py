@@ -163,9 +163,14 @@ class Body:
 
     @property
     def resting_on(self) -> "Body | None":
-        """The body this one rests or slides on (resting contact), or None while free."""
+        """The body this one rests or slides on, or None while free. In the contact model
+        "islands": the body it presses on hardest at its island's last step (the one it fell
+        asleep on, while asleep)."""
         _, world = self._row()
-        support = int(world._state.I[self.id, L.SUPPORT])
+        if world._islands is not None:
+            support = world._islands.support(self.id)
+        else:
+            support = int(world._state.I[self.id, L.SUPPORT])
         return world._handles.get(support) if support >= 0 else None
 
     @property

@@ -65,6 +65,7 @@ from pge.core.tuning import (
     IMPACT_ITERATIONS,
     ISLAND_ITERATIONS,
     LCP_LIMIT,
+    MAX_TURN,
     PUSH_RATE,
     PUSH_SLOP,
     SHORTEST_STEP,
@@ -182,6 +183,12 @@ def _collect(S, members, local, margin, t):
 @njit(cache=True, inline="always")
 def _contact_key(i, j, key):
     return ((i << _BODY_BITS) | j) << _KEY_BITS | key
+
+
+def contact_bodies(keys):
+    """The two bodies of each contact key (arrays of body ids, as ``step_island`` keyed them)."""
+    pairs = keys >> _KEY_BITS
+    return pairs >> _BODY_BITS, pairs & ((1 << _BODY_BITS) - 1)
 
 
 @njit(cache=True, inline="always")
@@ -1061,7 +1068,7 @@ def _end_targets(rows, now, pairs, count):
 
 
 @njit(cache=True)
-def _push_out(F, now, end, rows, pairs, count, h, down_x, down_y):
+def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
     """The push-out stage: each body's velocity change ``lift`` at the step's start that
     moves its overlaps out by ``PUSH_RATE`` of their depth, taken back by an equal and
     opposite change spread over the step, so that it moves the bodies and leaves their
@@ -1073,9 +1080,11 @@ def _push_out(F, now, end, rows, pairs, count, h, down_x, down_y):
     ``lift (1 - s / h)`` to it, so it moves the point by ``h lift / 2``. The lifts are
     normal impulses (never pulling, no friction), solved by ``_solve`` like the forces, on
     the separation ``e`` each point would have at the step's end without them: moved out by
-    at least ``PUSH_RATE`` of ``-e`` where ``e < 0``, closed by at most ``e`` where
-    ``e >= 0``. Nothing is solved unless some point overlaps by more than ``PUSH_SLOP`` of
-    its pair's smaller reach. Returns the lifts (all zero then) and the sweeps taken."""
+    at least ``PUSH_RATE`` of ``-e`` per ``nominal`` step length (the island's step before
+    any cut for a bounce: ``h / nominal`` of that in a step cut shorter, so that the lift,
+    a speed, stays within ``2 PUSH_RATE |e| / nominal``) where ``e < 0``, closed by at most ``e`` where ``e >= 0``. Nothing is solved unless
+    some point overlaps by more than ``PUSH_SLOP`` of its pair's smaller reach. Returns the
+    lifts (all zero then) and the sweeps taken."""
     m = now.shape[0]
     lift = np.zeros((m, 3))
     need = np.empty(count)
@@ -1085,7 +1094,7 @@ def _push_out(F, now, end, rows, pairs, count, h, down_x, down_y):
         wx, wy = _relative(end, pairs, rows, c)
         moved = 0.5 * h * ((ux + wx) * rows[c, NX] + (uy + wy) * rows[c, NY])
         left = rows[c, SEPARATION] + moved
-        need[c] = -2.0 * (PUSH_RATE * left if left < 0.0 else left) / h
+        need[c] = -2.0 * PUSH_RATE * left / nominal if left < 0.0 else -2.0 * left / h
         reach = min(F[pairs[c, 2], L.REACH], F[pairs[c, 3], L.REACH])
         if left < -PUSH_SLOP * reach:
             largest = max(largest, need[c])
@@ -1152,6 +1161,53 @@ def _until_contact(S, now, rows, pairs, count, h):
 
 
 @njit(cache=True)
+def _after_bounces(F, S, members, now, rows, pairs, count, h, speed, down_x, down_y):
+    """The step's length once its bounces are taken: a bounce may send a body towards a gap
+    that then closes within the step (a ball between two walls). Its impact comes at that
+    instant, so that the impact stage takes it with its restitution too; across it, the
+    gap's speculative bound would stop the body there, an inelastic impact. The bounces are
+    tried on copies, without the gaps' bounds (which would hide the speed they give)."""
+    bounces = False
+    for c in range(count):
+        bounces = bounces or rows[c, IMPACT] > 0.0
+    if not bounces:
+        return h
+    trial = rows[:count].copy()
+    for c in range(count):
+        if trial[c, IMPACT] < 0.0:
+            trial[c, IMPACT] = -math.inf
+    moved = now.copy()
+    _impacts(F, members, moved, trial, pairs, count, speed, down_x, down_y)
+    return _until_contact(S, moved, trial, pairs, count, h)
+
+
+@njit(cache=True)
+def _turn_limit(S, members, now, h):
+    """``h``, or less where a polygon turns faster than ``MAX_TURN`` a step (a circle's
+    spin does not move its outline); at least ``SHORTEST_STEP`` of ``h``."""
+    F = S[0]
+    I = S[1]
+    fastest = 0.0
+    for k in range(members.shape[0]):
+        if I[members[k], L.KIND] != CIRCLE:
+            fastest = max(fastest, abs(now[k, 2]))
+    if fastest * h <= MAX_TURN:
+        return h
+    return max(MAX_TURN / fastest, SHORTEST_STEP * h)
+
+
+@njit(cache=True, inline="always")
+def _speed_scale(F, members, now, h, pull):
+    """The speed the solves measure their tolerance against: what the strongest
+    acceleration gives in one step, or without any, the fastest body's own speed."""
+    speed = h * pull
+    if not speed > 0.0:
+        for k in range(members.shape[0]):
+            speed = max(speed, math.hypot(now[k, 0], now[k, 1]) + abs(now[k, 2]) * F[members[k], L.REACH])
+    return speed
+
+
+@njit(cache=True)
 def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     """One step of the island made of ``members`` (body ids, all in one island) at time ``t``
     with step length ``h``; ``local`` is a scratch map of body id to position in ``members``
@@ -1169,17 +1225,20 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     F = S[0]
     now, margin = _start(S, members, local, h, t)
     rows, pairs, count = _collect(S, members, local, margin, t)
-    h = _until_contact(S, now, rows, pairs, count, h)
-    keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
     pull = 0.0
     for k in range(members.shape[0]):
         pull = max(pull, math.hypot(F[members[k], L.FREE_AX], F[members[k], L.FREE_AY]))
     down_x = F[members[0], L.FREE_AX]
     down_y = F[members[0], L.FREE_AY]
-    speed = h * pull
-    if not speed > 0.0:  # no acceleration: measure the solve against the bodies' own speeds
-        for k in range(members.shape[0]):
-            speed = max(speed, math.hypot(now[k, 0], now[k, 1]) + abs(now[k, 2]) * F[members[k], L.REACH])
+    natural = _turn_limit(S, members, now, h)
+    h = min(_until_contact(S, now, rows, pairs, count, h), natural)
+    keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
+    speed = _speed_scale(F, members, now, h, pull)
+    shorter = _after_bounces(F, S, members, now, rows, pairs, count, h, speed, down_x, down_y)
+    if shorter < h:
+        h = shorter
+        keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
+        speed = _speed_scale(F, members, now, h, pull)
     sweeps = _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y)
     end = np.empty_like(now)
     for k in range(members.shape[0]):
@@ -1189,7 +1248,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         end[k, 2] = now[k, 2]
     _end_targets(rows, now, pairs, count)
     sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS)
-    lift, pushes = _push_out(F, now, end, rows, pairs, count, h, down_x, down_y)
+    lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y)
     sweeps += pushes
     labels, fastest, deepest = _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed)
     S[13][L.S_ISLAND_STEPS] += 1

@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from pge.contact.island import step_island
+from pge.contact.island import contact_bodies, step_island
 from pge.core import engine, grid
 from pge.core import layout as L
 from pge.core.tuning import SLEEP_OVERLAP, SLEEP_SPEED, SLEEP_TIME
@@ -35,14 +35,16 @@ def _grown(rows: np.ndarray, n: int) -> np.ndarray:
 
 
 class Island:
-    """One island: its bodies, its warm-start contacts, its timer and its sleep."""
+    """One island: its bodies, its warm-start contacts, its timer and its sleep (``held``:
+    the contacts and impulses it last fell asleep with)."""
 
-    __slots__ = ("members", "keys", "impulses", "timer", "asleep", "still_since")
+    __slots__ = ("members", "keys", "impulses", "held", "timer", "asleep", "still_since")
 
     def __init__(self, members: list[int]) -> None:
         self.members = members
         self.keys = _NO_KEYS
         self.impulses = _NO_IMPULSES
+        self.held = (_NO_KEYS, _NO_IMPULSES)
         self.timer: int | None = None
         self.asleep = False
         self.still_since: float | None = None
@@ -73,6 +75,23 @@ class Islands:
         """Whether body ``i`` is in a sleeping island."""
         island = self.of(i)
         return island is not None and island.asleep
+
+    def support(self, i: int) -> int:
+        """The body that ``i`` presses on hardest: of its contacts at its island's last step
+        (the ones it fell asleep with, while asleep), the other body of the pair whose points
+        took the largest normal impulse; -1 if it is in no island or pressed on nothing."""
+        island = self.of(i)
+        if island is None:
+            return -1
+        # Until its first step after waking, an island's contacts are the ones it slept on.
+        keys, impulses = (island.keys, island.impulses) if island.keys.shape[0] else island.held
+        firsts, seconds = contact_bodies(keys)
+        load: dict[int, float] = {}
+        for a, b, impulse in zip(firsts.tolist(), seconds.tolist(), impulses[:, 0].tolist()):
+            if i in (a, b) and impulse > 0.0:
+                other = b if a == i else a
+                load[other] = load.get(other, 0.0) + impulse
+        return max(load, key=lambda other: (load[other], -other)) if load else -1
 
     # ------------------------------------------------------------------ changes
 
@@ -256,6 +275,7 @@ class Islands:
                 F[i, L.OMEGA] = 0.0
             F[i, L.AX] = F[i, L.AY] = F[i, L.ALPHA] = 0.0
         island.asleep = True
+        island.held = (island.keys, island.impulses)
         island.keys = _NO_KEYS
         island.impulses = _NO_IMPULSES
         self._cancel(island)

@@ -45,7 +45,7 @@ from pge.core.predict import new_mark, place, predict
 from pge.core.response import apply_impulse, contact_response
 from pge.core.sleep import try_sleep, wake
 from pge.core.queue import pop_earliest
-from pge.core.tuning import STORM_SPAN, STORM_TICKS
+from pge.core.tuning import CONTACT_MARGIN, STORM_SPAN, STORM_TICKS
 from pge.toi.circle_circle import circle_circle_contact
 from pge.toi.circle_polygon import circle_polygon_contact
 from pge.toi.polygon_polygon import polygon_polygon_contact
@@ -386,20 +386,25 @@ def collide_free(S, a, b, feature, t):
             apply_impulse(F, b, False, True, -jx, -jy, rbx, rby)
     ux = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
     uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
-    # A pair that collides again within one step of the islands (a ball bouncing lower and
-    # lower, two spinning polygons grinding, a corner and then another corner, a body
-    # squeezed between two) is a persistent contact too: its island's step then takes all
-    # its points at once. So no pair makes more than one impact per step: the cost of
-    # contact is bounded by the step rate, whatever the scene.
+    # A pair that collides again within one step of the islands and parts slowly (by less
+    # than the rest height over a step) is a persistent contact: a ball bouncing lower and
+    # lower, two polygons grinding, a body squeezed between two. Its island's step then takes
+    # all its points at once, so runs of impacts that would converge on an instant end after
+    # a few. A pair that parts faster is in flight (an elastic corner-then-corner hit, a ball
+    # shot to and fro between two walls): its next impact is exact, as any in a gas.
     within = S[3][L.CONTACT_STEP]
-    again = (I[a, L.LAST_OTHER] == b and t - F[a, L.LAST_HIT] <= within) or (
-        I[b, L.LAST_OTHER] == a and t - F[b, L.LAST_HIT] <= within
+    leaving = ux * nx + uy * ny
+    reach = min(F[a, L.REACH], F[b, L.REACH])
+    slow = leaving * within < CONTACT_MARGIN * reach
+    again = slow and (
+        (I[a, L.LAST_OTHER] == b and t - F[a, L.LAST_HIT] <= within)
+        or (I[b, L.LAST_OTHER] == a and t - F[b, L.LAST_HIT] <= within)
     )
     F[a, L.LAST_HIT] = t
     F[b, L.LAST_HIT] = t
     I[a, L.LAST_OTHER] = b
     I[b, L.LAST_OTHER] = a
-    join = 1.0 if again or joins(S, a, b, nx, ny, ux * nx + uy * ny) else 0.0
+    join = 1.0 if again or joins(S, a, b, nx, ny, leaving) else 0.0
     if join == 0.0 and (I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0):
         join = 2.0  # no join, but an island is hit: Python wakes it if it sleeps
     if I[a, L.FIXED] == 0:

@@ -30,6 +30,10 @@ ISLAND_STEP = 1.0 / 240.0
 #: a step is cut short where a gap closes sooner (its impact then has its restitution), but
 #: never below this fraction of ISLAND_STEP, so that time moves on
 SHORTEST_STEP = 1e-6
+#: an island's step is no longer than this angle over its fastest-turning polygon's spin:
+#: the step's forces keep the directions of its start while corners move on arcs, which
+#: leaves overlaps of about MAX_TURN^2 / 2 of a reach for the next step to push out
+MAX_TURN = 0.01
 #: points of an island whose gaps close within this fraction of ISLAND_STEP of each other
 #: take their impacts together (a face landing level to rounding lands as a face)
 SIMULTANEOUS = 1e-3
