@@ -92,5 +92,6 @@ def test_the_push_out_leaves_no_speed_to_pump_a_pile():
     settled = energy()
     for k in range(1, 31):
         world.run_until(5.0 + 0.5 * k)
-        assert energy() - settled <= 5e-4 * settled, f"t = {world.time}: {energy()} J, settled {settled} J"
+        # the pump was 3.5 J a second (15 % of it); the steps' integration error: at most 6e-4
+        assert energy() - settled <= 1e-3 * settled, f"t = {world.time}: {energy()} J, settled {settled} J"
     assert len(moving) == 22 and world.stats["island_steps"] < 20000

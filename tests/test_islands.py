@@ -571,3 +571,29 @@ def test_a_fast_ball_between_two_walls_stays_in_flight_and_never_sinks_into_them
         assert 0.02 - 1e-9 <= ball.position[0] <= 0.5 - 0.03125 / 2 - 0.02 + 1e-9
     assert world.stats["collisions"] > 1000
     assert world.stats["joins"] == 0 and world.stats["island_steps"] == 0
+
+
+def test_an_impact_on_a_body_of_an_island_is_solved_with_its_contacts():
+    """A ball dropped onto a box that stands on the floor: the floor takes the blow at the
+    same instant, so the box does not move and the ball bounces as off the floor itself, at
+    e times its speed; the collision's record carries the impulse, m (1 + e) v. Solved on the
+    two as free bodies first (the box then stopped by the floor at its next step), the ball
+    kept falling at a quarter of its speed and hit the box again."""
+    world = _floor_world(elasticity=0.5)
+    box = world.add_box(-0.1, 0.0, 0.2, 0.2, mass=1.0, friction=0.5)
+    world.run_until(1.0)
+    assert box.asleep
+    ball = world.add_circle((0.0, 0.5), 0.05, mass=1.0, friction=0.5)
+    hits = []
+    world.on_collision(hits.append, ball)
+    speed = math.sqrt(2.0 * G * (0.5 - 0.05 - 0.2))
+    world.run_until(1.0 + math.sqrt(2.0 * (0.5 - 0.05 - 0.2) / G) + 1e-3)
+    assert len(hits) == 1 and {hits[0].a, hits[0].b} == {ball, box}
+    assert hits[0].approach_speed == pytest.approx(speed, rel=1e-9)
+    assert hits[0].impulse == pytest.approx(1.5 * speed, rel=1e-9)
+    (vx, vy), t_hit = ball.velocity, hits[0].time
+    assert vx == pytest.approx(0.0, abs=1e-12)
+    assert vy == pytest.approx(0.5 * speed - G * (world.time - t_hit), rel=1e-9)
+    assert box.velocity == pytest.approx((0.0, 0.0), abs=1e-11 * speed)
+    assert box.angular_velocity == pytest.approx(0.0, abs=1e-11 * speed)
+    assert box.position[1] == pytest.approx(0.1, abs=1e-9)

@@ -860,7 +860,9 @@ class World:
             if code == L.JOINED:
                 a = int(out[L.OUT_A])
                 b = int(out[L.OUT_B])
-                self._islands.collided(a, b, out[L.OUT_JOIN] == 1.0, float(out[L.OUT_TIME]))
+                struck = self._islands.collided(a, b, float(out[L.OUT_JOIN]), float(out[L.OUT_TIME]))
+                if out[L.OUT_JOIN] == L.ABSORB:
+                    out[L.OUT_IMPULSE] = struck
                 I = state.I
                 if out[L.OUT_IMPULSE] != 0.0 and (notify_all or I[a, L.NOTIFY] or I[b, L.NOTIFY]):
                     code = L.COLLIDED

@@ -1028,9 +1028,10 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     more than it within the step; inelastic, so kinetic energy never rises (the energy
     guard scales back what rounding would add). The same solve as the force stage, on the
     ``IMPACT`` targets, from zero impulses; the rows' targets and warm-start impulses are
-    left as they were. Returns the number of sweeps."""
+    left as they were. Returns the number of sweeps and each point's normal impulse."""
+    struck = np.zeros(count)
     if count == 0:
-        return 0
+        return 0, struck
     closing = False
     for c in range(count):
         ux, uy = _relative(now, pairs, rows, c)
@@ -1038,7 +1039,7 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
             closing = True
             break
     if not closing:
-        return 0
+        return 0, struck
     before = now.copy()
     warm = rows[:count, LAMBDA_N:LAMBDA_T + 1].copy()
     forces = rows[:count, TARGET].copy()
@@ -1050,9 +1051,11 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     for k in range(members.shape[0]):
         for q in range(3):
             now[k, q] = before[k, q] + scale * (now[k, q] - before[k, q])
+    for c in range(count):
+        struck[c] = scale * rows[c, LAMBDA_N]
     rows[:count, TARGET] = forces
     rows[:count, LAMBDA_N:LAMBDA_T + 1] = warm
-    return sweeps
+    return sweeps, struck
 
 
 @njit(cache=True)
@@ -1215,7 +1218,8 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     contacts and their impulses.
 
     Returns ``(keys, impulses, labels, fastest, deepest, sweeps, length, lift)``: this step's
-    contacts (sorted) and impulses for the next, each member's part of the island (-1: it
+    contacts (sorted) and their impulses (normal and friction of the force stage, for the
+    next step's warm start, and the normal impulse of the impact stage), each member's part of the island (-1: it
     touches nothing and has left the island), the largest mean speed over ``sqrt(|a| reach)``
     and the deepest overlap over its pair's smaller reach (for sleep), how many sweeps the
     solve took, the step's length (``h``, or less where a gap closes sooner:
@@ -1239,7 +1243,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         h = shorter
         keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
         speed = _speed_scale(F, members, now, h, pull)
-    sweeps = _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y)
+    sweeps, struck = _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y)
     end = np.empty_like(now)
     for k in range(members.shape[0]):
         i = members[k]
@@ -1253,8 +1257,9 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     labels, fastest, deepest = _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed)
     S[13][L.S_ISLAND_STEPS] += 1
     order = np.argsort(keys)
-    impulses = np.empty((count, 2))
+    impulses = np.empty((count, 3))
     for c in range(count):
         impulses[c, 0] = rows[order[c], LAMBDA_N]
         impulses[c, 1] = rows[order[c], LAMBDA_T]
+        impulses[c, 2] = struck[order[c]]
     return keys[order], impulses, labels, fastest, deepest, sweeps, h, lift

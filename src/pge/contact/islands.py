@@ -24,7 +24,7 @@ from pge.core.tuning import SLEEP_OVERLAP, SLEEP_SPEED, SLEEP_TIME
 from pge.toi import CIRCLE
 
 _NO_KEYS = np.zeros(0, dtype=np.int64)
-_NO_IMPULSES = np.zeros((0, 2))
+_NO_IMPULSES = np.zeros((0, 3))
 
 
 def _grown(rows: np.ndarray, n: int) -> np.ndarray:
@@ -95,26 +95,42 @@ class Islands:
 
     # ------------------------------------------------------------------ changes
 
-    def collided(self, a: int, b: int, join: bool, t: float) -> None:
-        """A collision of ``a`` and ``b`` at ``t`` touched an island or is persistent
-        (``join``): wake the islands involved and, if ``join``, make them one; either way
-        each island involved steps now. Its last step planned its contact forces and
-        margins for the velocities before the impact, and its bodies' contacts with fixed
-        bodies and with each other are not predicted: a body knocked towards a wall is
-        stopped there only by a step."""
+    def collided(self, a: int, b: int, how: float, t: float) -> float:
+        """A collision of ``a`` and ``b`` at ``t`` touched an island or is persistent; ``how``
+        is the engine's ``OUT_JOIN`` code. Wake the islands involved; ``JOIN``: make them one;
+        ``ABSORB``: make them one and step it at once, its impact stage solving the impact
+        (no impulse was applied) together with its contacts, and return the normal impulse
+        the pair took (0 otherwise); ``WAKE``: each island involved steps now. Its last step
+        planned its contact forces and margins for the velocities before the impact, and its
+        bodies' contacts with fixed bodies and with each other are not predicted: a body
+        knocked towards a wall is stopped there only by a step."""
         I = self.world._state.I
         bodies = [x for x in (a, b) if not I[x, L.FIXED]]
         for x in bodies:
             island = self.of(x)
             if island is not None and island.asleep:
                 self._wake(int(I[x, L.ISLAND]), t)
-        if join:
+        if how == L.ABSORB:
+            k = self._merge(bodies, t)
+            island = self.islands[k]
+            self._cancel(island)
+            self._step(k, t)
+            return self._struck(island, a, b)
+        if how == L.JOIN:
             self._merge(bodies, t)
-            return
+            return 0.0
         for k in sorted({int(I[x, L.ISLAND]) for x in bodies if I[x, L.ISLAND] >= 0}):
             self._schedule(k, t)
+        return 0.0
 
-    def _merge(self, bodies: list[int], t: float) -> None:
+    @staticmethod
+    def _struck(island: Island, a: int, b: int) -> float:
+        """The normal impulse that the pair ``a``, ``b`` took in ``island``'s last impact stage."""
+        firsts, seconds = contact_bodies(island.keys)
+        pair = ((firsts == a) & (seconds == b)) | ((firsts == b) & (seconds == a))
+        return float(island.impulses[pair, 2].sum())
+
+    def _merge(self, bodies: list[int], t: float) -> int:
         I = self.world._state.I
         found = sorted({int(I[x, L.ISLAND]) for x in bodies if I[x, L.ISLAND] >= 0})
         if found:
@@ -141,6 +157,7 @@ class Islands:
             # Pairs inside the island are no longer predicted: drop what was queued for them.
             self.world._touch(changed)
         self._schedule(target, t)
+        return target
 
     def leave(self, i: int) -> None:
         """Take body ``i`` out of its island (removed, fixed, or moved by hand)."""

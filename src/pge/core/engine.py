@@ -347,9 +347,14 @@ def collide_free(S, a, b, feature, t):
     at the contact point (restitution, Coulomb friction, the energy guard of
     ``pge.core.impulse``) on two free bodies; returns the normal impulse (0: a graze).
 
-    ``out`` gets the record and ``OUT_JOIN``: 1 if the contact is persistent (``joins``),
-    2 if it is not but a body of an island took part (which may sleep), else 0; when not 0
-    the loop hands the collision to Python, which joins or wakes the islands.
+    ``out`` gets the record and ``OUT_JOIN``: ``ABSORB`` when a body of an island takes part
+    and the pair closes slower than a step can follow (its approach over a step below the
+    smaller reach): no impulse is applied here, and the island's step at this instant
+    solves the impact together with the island's contacts (a block standing on a floor and
+    hit low answers with the floor's push and friction at once, not as a free body); else
+    ``JOIN`` if the contact is persistent (``joins``), ``WAKE`` if it is not but a body of an
+    island took part (which may sleep), else ``NO_JOIN``; when not ``NO_JOIN`` the loop hands
+    the collision to Python, which joins, absorbs or wakes the islands.
     """
     F = S[0]
     I = S[1]
@@ -370,7 +375,10 @@ def collide_free(S, a, b, feature, t):
     uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
     normal_speed = ux * nx + uy * ny
     impulse = 0.0
-    if normal_speed < 0.0:
+    within = S[3][L.CONTACT_STEP]
+    reach = min(F[a, L.REACH], F[b, L.REACH])
+    absorb = (I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0) and -normal_speed * within < reach
+    if normal_speed < 0.0 and not absorb:
         restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
         mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
         ann, ant, att = contact_response(F, a, False, True, rax, ray, nx, ny, tx, ty)
@@ -392,9 +400,7 @@ def collide_free(S, a, b, feature, t):
     # all its points at once, so runs of impacts that would converge on an instant end after
     # a few. A pair that parts faster is in flight (an elastic corner-then-corner hit, a ball
     # shot to and fro between two walls): its next impact is exact, as any in a gas.
-    within = S[3][L.CONTACT_STEP]
     leaving = ux * nx + uy * ny
-    reach = min(F[a, L.REACH], F[b, L.REACH])
     slow = leaving * within < CONTACT_MARGIN * reach
     again = slow and (
         (I[a, L.LAST_OTHER] == b and t - F[a, L.LAST_HIT] <= within)
@@ -404,9 +410,14 @@ def collide_free(S, a, b, feature, t):
     F[b, L.LAST_HIT] = t
     I[a, L.LAST_OTHER] = b
     I[b, L.LAST_OTHER] = a
-    join = 1.0 if again or joins(S, a, b, nx, ny, leaving) else 0.0
-    if join == 0.0 and (I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0):
-        join = 2.0  # no join, but an island is hit: Python wakes it if it sleeps
+    if normal_speed < 0.0 and absorb:
+        join = L.ABSORB
+    elif again or joins(S, a, b, nx, ny, leaving):
+        join = L.JOIN
+    elif I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0:
+        join = L.WAKE  # no join, but an island is hit: Python wakes it if it sleeps
+    else:
+        join = L.NO_JOIN
     if I[a, L.FIXED] == 0:
         touch_one(S, a)
     if I[b, L.FIXED] == 0:
@@ -729,7 +740,7 @@ def run(S, until, notify_all):
         if kind == L.COLLISION:
             stats[L.S_EVENTS] += 1
             impulse = collide(S, a, b, feature, t)
-            if impulse == 0.0:
+            if impulse == 0.0 and out[L.OUT_JOIN] != L.ABSORB:
                 stats[L.S_GRAZES] += 1
             else:
                 stats[L.S_COLLISIONS] += 1
