@@ -72,12 +72,13 @@ def collision_times(world: World, body=None) -> list[float]:
     return seen
 
 
-def slope_scene(angle_deg: float, shape: str, mu: float, velocity: float = 0.0, on_ramp: bool = False):
+def slope_scene(angle_deg: float, shape: str, mu: float, velocity: float = 0.0, on_ramp: bool = False, contact="rules"):
     """A fixed ramp rising to the right at ``angle_deg`` and a body touching it (pressed in by
     1e-12) at rest, or moving up the slope at ``velocity``; friction ``mu`` on the body, or on
-    the ramp (``on_ramp``). Returns (world, body, ramp, unit tangent up the slope)."""
+    the ramp (``on_ramp``); contact model ``contact``. Returns (world, body, ramp, unit tangent
+    up the slope)."""
     a = math.radians(angle_deg)
-    world = World(gravity=(0.0, -G), elasticity=0.5, bounds=(-1.0, -1.0, 5.0, 5.0))
+    world = World(gravity=(0.0, -G), elasticity=0.5, bounds=(-1.0, -1.0, 5.0, 5.0), contact=contact)
     length = 4.0
     ramp = world.add_polygon(
         [(0.0, 0.0), (length * math.cos(a), 0.0), (length * math.cos(a), length * math.sin(a))],

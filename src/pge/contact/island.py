@@ -389,6 +389,33 @@ def _friction_pair(F, vel, rows, pairs, c):
 
 
 @njit(cache=True)
+def _into_cone(F, vel, rows, pairs, c, size):
+    """Bring the friction of the pair at row ``c`` (``size`` points) back into the cone of
+    its normal impulses, which the normal update that follows the friction update may have
+    shrunk (a warm start that pressed harder than the step needs: gravity switched off);
+    left outside, a sweep that changes nothing more would end with friction acting where
+    nothing presses. Returns its change."""
+    mu = rows[c, MU]
+    if not mu > 0.0:
+        return 0.0
+    pressed = rows[c, LAMBDA_N] + (rows[c + 1, LAMBDA_N] if size == 2 else 0.0)
+    limit = mu * pressed
+    old = rows[c, LAMBDA_T]
+    if abs(old) <= limit:
+        return 0.0
+    new = limit if old > 0.0 else -limit
+    rows[c, LAMBDA_T] = new
+    tx = -rows[c, NY]
+    ty = rows[c, NX]
+    if size == 2:
+        rax, ray, rbx, rby = _midpoint(rows, c)
+        _push_at(F, vel, pairs, c, (new - old) * tx, (new - old) * ty, rax, ray, rbx, rby)
+    else:
+        _push(F, vel, pairs, rows, c, 0.0, new - old)
+    return abs(new - old)
+
+
+@njit(cache=True)
 def _normal_pair(F, vel, rows, pairs, c):
     """The normal impulses of rows ``c`` and ``c + 1`` (two points of one pair, sharing a
     normal) solved together: the 2x2 complementarity problem ``u = K x + b >= target``,
@@ -489,6 +516,7 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most):
             else:
                 change = max(change, _friction(F, vel, rows, pairs, c))
                 change = max(change, _normal(F, vel, rows, pairs, c))
+            change = max(change, _into_cone(F, vel, rows, pairs, c, sizes[b]))
         if change == 0.0 or _residual(vel, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
             return sweep + 1
         if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm):
@@ -1032,10 +1060,12 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     struck = np.zeros(count)
     if count == 0:
         return 0, struck
+    # A point closing by less than the solve's own tolerance is the force stage's to stop
+    # (rounding, or a pile at rest): no impact solve for it.
     closing = False
     for c in range(count):
         ux, uy = _relative(now, pairs, rows, c)
-        if ux * rows[c, NX] + uy * rows[c, NY] < rows[c, IMPACT]:
+        if ux * rows[c, NX] + uy * rows[c, NY] < rows[c, IMPACT] - SOLVE_TOLERANCE * speed:
             closing = True
             break
     if not closing:
