@@ -1060,12 +1060,10 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     struck = np.zeros(count)
     if count == 0:
         return 0, struck
-    # A point closing by less than the solve's own tolerance is the force stage's to stop
-    # (rounding, or a pile at rest): no impact solve for it.
     closing = False
     for c in range(count):
         ux, uy = _relative(now, pairs, rows, c)
-        if ux * rows[c, NX] + uy * rows[c, NY] < rows[c, IMPACT] - SOLVE_TOLERANCE * speed:
+        if ux * rows[c, NX] + uy * rows[c, NY] < rows[c, IMPACT]:
             closing = True
             break
     if not closing:
