@@ -377,7 +377,11 @@ def collide_free(S, a, b, feature, t):
     impulse = 0.0
     within = S[3][L.CONTACT_STEP]
     reach = min(F[a, L.REACH], F[b, L.REACH])
-    absorb = (I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0) and -normal_speed * within < reach
+    # At most once per pair and instant: if the island's step left the pair touching and
+    # closing (its manifold did not hold them, and they parted into two islands), the same
+    # impact comes again at once, and then it is one exact impulse, so that time moves on.
+    again_now = (I[a, L.LAST_OTHER] == b and F[a, L.LAST_HIT] == t) or (I[b, L.LAST_OTHER] == a and F[b, L.LAST_HIT] == t)
+    absorb = (I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0) and -normal_speed * within < reach and not again_now
     if normal_speed < 0.0 and not absorb:
         restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
         mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
