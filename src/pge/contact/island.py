@@ -128,11 +128,6 @@ def _points(S, i, j, margin, rows, count):
             xj, yj, F[j, L.RADIUS], xi, yi, OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], True, margin, rows, count
         )
     tolerance = FACE_HYSTERESIS * (F[i, L.REACH] + F[j, L.REACH])
-    if I[j, L.FIXED] != 0:
-        # Faces that are nearly parallel: the fixed body's is the reference, so that a body
-        # rocking on a floor by a rounding-sized angle is pushed along the floor's normal,
-        # not along its own tilted face (which would push it sideways).
-        tolerance = -tolerance
     return polygon_polygon_points(
         xi, yi, OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], xj, yj, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N],
         margin, tolerance, rows, count,
