@@ -638,6 +638,15 @@ def worst_overlap(world, bodies, within_islands=None):
     return worst, what
 
 
+#: the random spinning scenes of the overlap tests (``build_spinning_scene``'s arguments)
+SPINNING_SCENES = {
+    "seed": st.integers(0, 2**32 - 1),
+    "count": st.integers(5, 15),
+    "elastic": st.booleans(),
+    "gravity": st.booleans(),
+    "friction": st.booleans(),
+}
+
 #: the contact model "islands": the deepest overlap a step may leave between bodies whose
 #: contact it solves (docs/contact.md, "Exact and integrated"), relative to the sum of the
 #: two bounding radii: about MAX_TURN^2 / 2 of a reach per step, pushed out at the next; a
@@ -648,13 +657,7 @@ ISLAND_OVERLAP = 1e-3
 
 
 @SCENE_SETTINGS
-@given(
-    seed=st.integers(0, 2**32 - 1),
-    count=st.integers(5, 15),
-    elastic=st.booleans(),
-    gravity=st.booleans(),
-    friction=st.booleans(),
-)
+@given(**SPINNING_SCENES)
 @example(seed=0, count=5, elastic=False, gravity=False, friction=False)  # 4.7e-3 before MAX_TURN
 def test_random_rotating_scenes_with_islands_overlap_only_within_the_islands_bound(seed, count, elastic, gravity, friction):
     """With the contact model "islands": at every event and frame of the first 10 s (or 1500
@@ -696,13 +699,7 @@ def run_overlap_scene(seed, count, elastic, gravity, friction):
 
 
 @SCENE_SETTINGS
-@given(
-    seed=st.integers(0, 2**32 - 1),
-    count=st.integers(5, 15),
-    elastic=st.booleans(),
-    gravity=st.booleans(),
-    friction=st.booleans(),
-)
+@given(**SPINNING_SCENES)
 def test_random_rotating_scenes_never_overlap_and_stay_in_the_box(seed, count, elastic, gravity, friction):
     """Circles and spinning polygons in a closed box never overlap by more than 1e-9 of their sizes
     at any event or frame of their first 10 s or 1500 events, and never leave the box (the fixed

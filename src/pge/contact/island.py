@@ -1113,9 +1113,10 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
     the separation ``e`` each point would have at the step's end without them: moved out by
     at least ``PUSH_RATE`` of ``-e`` per ``nominal`` step length (the island's step before
     any cut for a bounce: ``h / nominal`` of that in a step cut shorter, so that the lift,
-    a speed, stays within ``2 PUSH_RATE |e| / nominal``) where ``e < 0``, closed by at most ``e`` where ``e >= 0``. Nothing is solved unless
-    some point overlaps by more than ``PUSH_SLOP`` of its pair's smaller reach. Returns the
-    lifts (all zero then) and the sweeps taken."""
+    a speed, stays within ``2 PUSH_RATE |e| / nominal``) where ``e < 0``, closed by at most
+    ``e`` where ``e >= 0``. Nothing is solved unless some point overlaps by more than
+    ``PUSH_SLOP`` of its pair's smaller reach. Returns the lifts (all zero then) and the
+    sweeps taken."""
     m = now.shape[0]
     lift = np.zeros((m, 3))
     need = np.empty(count)
@@ -1192,7 +1193,7 @@ def _until_contact(S, now, rows, pairs, count, h):
 
 
 @njit(cache=True)
-def _after_bounces(F, S, members, now, rows, pairs, count, h, speed, down_x, down_y):
+def _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y):
     """The step's length once its bounces are taken: a bounce may send a body towards a gap
     that then closes within the step (a ball between two walls). Its impact comes at that
     instant, so that the impact stage takes it with its restitution too; across it, the
@@ -1208,7 +1209,7 @@ def _after_bounces(F, S, members, now, rows, pairs, count, h, speed, down_x, dow
         if trial[c, IMPACT] < 0.0:
             trial[c, IMPACT] = -math.inf
     moved = now.copy()
-    _impacts(F, members, moved, trial, pairs, count, speed, down_x, down_y)
+    _impacts(S[0], members, moved, trial, pairs, count, speed, down_x, down_y)
     return _until_contact(S, moved, trial, pairs, count, h)
 
 
@@ -1247,7 +1248,8 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
 
     Returns ``(keys, impulses, labels, fastest, deepest, sweeps, length, lift)``: this step's
     contacts (sorted) and their impulses (normal and friction of the force stage, for the
-    next step's warm start, and the normal impulse of the impact stage), each member's part of the island (-1: it
+    next step's warm start, and the normal impulse of the impact stage), each member's part
+    of the island (-1: it
     touches nothing and has left the island), the largest mean speed over ``sqrt(|a| reach)``
     and the deepest overlap over its pair's smaller reach (for sleep), how many sweeps the
     solve took, the step's length (``h``, or less where a gap closes sooner:
@@ -1266,7 +1268,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     h = min(_until_contact(S, now, rows, pairs, count, h), natural)
     keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
     speed = _speed_scale(F, members, now, h, pull)
-    shorter = _after_bounces(F, S, members, now, rows, pairs, count, h, speed, down_x, down_y)
+    shorter = _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y)
     if shorter < h:
         h = shorter
         keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)

@@ -341,6 +341,17 @@ def joins(S, a, b, nx, ny, leaving):
     return pressing or I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0
 
 
+@njit(cache=True, inline="always")
+def _pair_last_hit(F, I, a, b):
+    """When ``a`` and ``b`` last collided with each other, if that was either one's last
+    collision (``LAST_OTHER``, ``LAST_HIT``); else -inf."""
+    if I[a, L.LAST_OTHER] == b:
+        return F[a, L.LAST_HIT]
+    if I[b, L.LAST_OTHER] == a:
+        return F[b, L.LAST_HIT]
+    return -_INF
+
+
 @njit(cache=True)
 def collide_free(S, a, b, feature, t):
     """The impact of ``a`` and ``b`` at ``t`` in the contact model ISLANDS: one exact impulse
@@ -377,11 +388,16 @@ def collide_free(S, a, b, feature, t):
     impulse = 0.0
     within = S[3][L.CONTACT_STEP]
     reach = min(F[a, L.REACH], F[b, L.REACH])
+    last = _pair_last_hit(F, I, a, b)
     # At most once per pair and instant: if the island's step left the pair touching and
     # closing (its manifold did not hold them, and they parted into two islands), the same
     # impact comes again at once, and then it is one exact impulse, so that time moves on.
-    again_now = (I[a, L.LAST_OTHER] == b and F[a, L.LAST_HIT] == t) or (I[b, L.LAST_OTHER] == a and F[b, L.LAST_HIT] == t)
-    absorb = (I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0) and -normal_speed * within < reach and not again_now
+    absorb = (
+        normal_speed < 0.0
+        and (I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0)
+        and -normal_speed * within < reach
+        and last != t
+    )
     if normal_speed < 0.0 and not absorb:
         restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
         mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
@@ -399,22 +415,18 @@ def collide_free(S, a, b, feature, t):
     ux = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
     uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
     # A pair that collides again within one step of the islands and parts slowly (by less
-    # than the rest height over a step) is a persistent contact: a ball bouncing lower and
+    # than CONTACT_MARGIN of the smaller reach over a step) is a persistent contact: a ball bouncing lower and
     # lower, two polygons grinding, a body squeezed between two. Its island's step then takes
     # all its points at once, so runs of impacts that would converge on an instant end after
     # a few. A pair that parts faster is in flight (an elastic corner-then-corner hit, a ball
     # shot to and fro between two walls): its next impact is exact, as any in a gas.
     leaving = ux * nx + uy * ny
-    slow = leaving * within < CONTACT_MARGIN * reach
-    again = slow and (
-        (I[a, L.LAST_OTHER] == b and t - F[a, L.LAST_HIT] <= within)
-        or (I[b, L.LAST_OTHER] == a and t - F[b, L.LAST_HIT] <= within)
-    )
+    again = leaving * within < CONTACT_MARGIN * reach and t - last <= within
     F[a, L.LAST_HIT] = t
     F[b, L.LAST_HIT] = t
     I[a, L.LAST_OTHER] = b
     I[b, L.LAST_OTHER] = a
-    if normal_speed < 0.0 and absorb:
+    if absorb:
         join = L.ABSORB
     elif again or joins(S, a, b, nx, ny, leaving):
         join = L.JOIN

@@ -166,7 +166,7 @@ ID_SHIFT = 29
 
 # ---- out: the record of the event that returned control to Python -----------
 OUT_TIME, OUT_A, OUT_B, OUT_PX, OUT_PY, OUT_NX, OUT_NY, OUT_IMPULSE, OUT_SPEED, OUT_ID, OUT_EPOCH = range(11)
-OUT_JOIN = 11  # 1.0: the collision in `out` joins its bodies' islands (contact model ISLANDS)
+OUT_JOIN = 11  # what the collision in `out` asks of the islands: one of the codes below
 #: what ``out[OUT_JOIN]`` asks of the islands (contact model ISLANDS): nothing; join the two
 #: bodies' islands (a persistent contact); wake the island hit (no join); take the impact
 #: into the island hit, whose step solves it with its contacts (no impulse applied yet)
