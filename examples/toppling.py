@@ -2,15 +2,16 @@
 
 A ball rolls into a tall block standing on the floor and hits it above its
 centre: the block tips over its far corner and falls flat. Two crates dropped
-at an angle (one of them spinning) land on a corner, tip, rock and settle on a
-face; a spinning triangle bounces about and comes to rest too.
+at an angle (one of them spinning), clear of the block's fall, land on a corner,
+tip, rock and settle on a face; a spinning triangle bounces about and comes to
+rest too.
 
 What it shows: rotation with exact contact times (corners of turning polygons
 are predicted, never stepped), the rigid-body impulse with friction
 (``obj.friction(mu)``: impacts start and stop spins), ``obj.rotate(angle)``
-and ``obj.rvel(omega)`` to start bodies turned and turning, and resting
-contact and sleeping piles ending the bounces: after a couple of seconds
-nothing moves and no more events happen.
+and ``obj.rvel(omega)`` to start bodies turned and turning, and islands (bodies
+in persistent contact, solved together and sleeping once still) ending the
+bounces: after a couple of seconds nothing moves and no more events happen.
 
 Run it in a window with ``python examples/toppling.py`` (ESC quits), or
 headless with ``PGE_HEADLESS=1 python examples/toppling.py``. At the end it
@@ -40,8 +41,8 @@ pge.box(0.98, 0.05, 0.02, 0.95, wood).fix()
 
 block = pge.box(0.3, 0.05, 0.04, 0.2, pge.rgb(0.85, 0.25, 0.2)).mass(0.2).friction(0.5)
 ball = pge.circle(0.08, 0.22, 0.03, pge.rgb(0.95, 0.8, 0.2)).mass(0.3).velocity(1.5, 0.0).friction(0.2)
-crate = pge.box(0.45, 0.45, 0.1, 0.1, pge.rgb(0.3, 0.55, 0.9)).mass(0.5).friction(0.5).rotate(0.5)
-plank = pge.box(0.62, 0.67, 0.12, 0.06, pge.rgb(0.3, 0.7, 0.4)).mass(0.5).friction(0.5).rotate(-0.9).rvel(3.0)
+crate = pge.box(0.6, 0.45, 0.1, 0.1, pge.rgb(0.3, 0.55, 0.9)).mass(0.5).friction(0.5).rotate(0.5)
+plank = pge.box(0.76, 0.67, 0.12, 0.06, pge.rgb(0.3, 0.7, 0.4)).mass(0.5).friction(0.5).rotate(-0.9).rvel(3.0)
 wedge = pge.poly3(0.84, 0.85, 0.94, 0.85, 0.89, 0.93, pge.rgb(0.6, 0.3, 0.8)).mass(0.2).friction(0.5).rvel(-6.0)
 movers = [block, ball, crate, plank, wedge]
 

@@ -48,7 +48,7 @@ def test_corners_meeting_inside_an_island_never_loop_at_one_instant():
     # joins them, and their island's step at that instant must keep them together. When the
     # manifold had no point for a corner meeting a corner, the step split them again and they
     # collided at the same instant for ever (an EventStormError after a million events).
-    world = corpus.build(corpus.scene_spec(2), "islands")
+    world = corpus.build(corpus.scene_spec(2))
     world.run_until(3.3)
     assert world.time == 3.3
     assert world.stats["collisions"] < 2000
@@ -62,7 +62,7 @@ def test_no_island_falls_asleep_overlapping():
     # SLEEP_OVERLAP (1e-8) of the smaller bounding radius, 1e-10 to 6e-10 here.
     sleepers = 0
     for seed in (27, 67, 187, 197):
-        world = corpus.build(corpus.scene_spec(seed), "islands")
+        world = corpus.build(corpus.scene_spec(seed))
         world.run_until(20.0)
         sleeping = [
             (a.label(), b.label(), depth)
@@ -81,7 +81,7 @@ def test_the_push_out_leaves_no_speed_to_pump_a_pile():
     # step's start is taken back over the step): once settled, the energy never rises beyond
     # the steps' integration error (a frictionless pentagon may keep rocking on a circle, and
     # a row of bodies keep sliding on the frictionless floor, which nothing damps).
-    world = corpus.build(corpus.scene_spec(165), "islands")
+    world = corpus.build(corpus.scene_spec(165))
     moving = [body for body in world.bodies if not body.is_fixed]
     gx, gy = world.gravity
 
@@ -102,6 +102,6 @@ def test_an_impact_taken_into_an_island_is_taken_once_per_instant():
     # step, which left the pair touching and closing in two islands, so the same impact came
     # again at once: a million times at one instant, until the progress watch stopped the
     # run. The second time in one instant it is one exact impulse.
-    world = corpus.build(corpus.scene_spec(122), "islands")
+    world = corpus.build(corpus.scene_spec(122))
     world.run_until(2.5)
     assert world.time == 2.5 and world.stats["collisions"] < 1000

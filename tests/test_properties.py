@@ -5,7 +5,8 @@ masses, velocities) placed without overlap inside the unit square, which four fi
 walls enclose. The properties are checked at every event the world yields (collisions,
 frames, the final stop), with geometry written here, independently of the engine's own:
 
-* no two bodies overlap by more than 1e-9 (``world.overlaps`` and a separating-axis check);
+* no two bodies overlap by more than 1e-9 (``world.overlaps`` and a separating-axis check), or,
+  where an island's step holds them, by more than its stated bound;
 * nothing leaves the box, even at 1e4 units/s against walls 0.001 thick;
 * with elasticity 1 and no gravity, kinetic energy (translation plus rotation) is conserved
   to 1e-12 relative over 10 s, and every collision conserves momentum (the impulse exchange
@@ -14,7 +15,8 @@ frames, the final stop), with geometry written here, independently of the engine
 * with gravity and elasticity 1, kinetic plus potential energy is conserved to 1e-9;
 * every collision record is sound: unit normal from b towards a, positive approach speed
   and impulse, a contact point on both shapes, and the bounce the restitution demands
-  (of the contact points' velocities, w x r included; the pivot rule may raise a slow one).
+  (of the contact points' velocities, w x r included; an impact solved inside an island only
+  stops the pair closing).
 """
 
 from __future__ import annotations
@@ -117,9 +119,32 @@ def extent(body):
     return (min(xs), min(ys), max(xs), max(ys))
 
 
+#: the overlap an island's step may leave between two bodies it holds, relative to the sum of their
+#: bounding radii: its integration error (docs/contact.md, "Exact and integrated"; measured by
+#: test_rotation's random spinning scenes)
+ISLAND_OVERLAP = 1e-3
+
+
+def held_by_island(world, a, b) -> bool:
+    """Whether an island's step, not an exact prediction, keeps ``a`` and ``b`` apart: both in one
+    island, or one in an island and the other fixed."""
+    islands = world._islands
+    ia, ib = islands.of(a.id), islands.of(b.id)
+    if a.is_fixed or b.is_fixed:
+        return ia is not None or ib is not None
+    return ia is not None and ia is ib
+
+
+def allowed_overlap(world, a, b) -> float:
+    """TOUCH for a pair whose contacts are predicted exactly; the islands' bound for one an island holds."""
+    if held_by_island(world, a, b):
+        return ISLAND_OVERLAP * (a.bounding_radius + b.bounding_radius)
+    return TOUCH
+
+
 def assert_no_overlap(world, where) -> None:
-    """No pair (not both fixed) overlaps by more than TOUCH, by the engine's check and by ours."""
-    reported = world.overlaps(TOUCH)
+    """No pair (not both fixed) overlaps by more than ``allowed_overlap``, by the engine's check and by ours."""
+    reported = [(a, b, d) for a, b, d in world.overlaps(TOUCH) if d > allowed_overlap(world, a, b)]
     assert reported == [], f"{where}: world.overlaps reports {[(a.label(), b.label(), d) for a, b, d in reported]}"
     bodies = world.bodies
     boxes = [extent(b) for b in bodies]
@@ -132,7 +157,7 @@ def assert_no_overlap(world, where) -> None:
             if ba[0] > bb[2] or bb[0] > ba[2] or ba[1] > bb[3] or bb[1] > ba[3]:
                 continue
             depth = overlap_depth(a, b)
-            assert depth <= TOUCH, f"{where}: {a.label()} and {b.label()} overlap by {depth!r}"
+            assert depth <= allowed_overlap(world, a, b), f"{where}: {a.label()} and {b.label()} overlap by {depth!r}"
 
 
 def assert_inside_box(world, where, box=BOX, slack=TOUCH) -> None:
@@ -171,35 +196,6 @@ def assert_contact_point_on_both(event, where) -> None:
         assert gap <= TOUCH, f"{where}: contact point {event.point} is {gap!r} from {body.label()}"
 
 
-REST_HEIGHT = 1e-4  # the World default, which build() keeps
-
-
-def pivot_speed_bound(a, b, point) -> float:
-    """An upper bound on the pivot rule's minimum separation speed at this contact (0 where it cannot act).
-
-    The rule (``pge.core.engine._pivot``) acts only when a polygon of the pair turns, and
-    then lets a contact pressed shut leave at up to ``sqrt(2 |g''| h)``, with ``g''`` the
-    second derivative of the gap and ``h = REST_HEIGHT x`` the smaller bounding radius.
-    ``|g''|`` is at most the relative acceleration plus the centripetal ``w^2 |r|`` and
-    Coriolis ``2 |w| |u|`` terms; taken from the state after the bounce (the rule sees it
-    just before its own push), with a factor 4 for the difference.
-    """
-    spins = [body.angular_velocity if body.kind == "polygon" else 0.0 for body in (a, b)]
-    if spins == [0.0, 0.0]:
-        return 0.0
-    (aax, aay), (bax, bay) = a.total_acceleration, b.total_acceleration
-    arm = max(math.dist(point, a.position), math.dist(point, b.position))
-    (avx, avy), (bvx, bvy) = point_velocity(a, point), point_velocity(b, point)
-    speed = math.hypot(avx - bvx, avy - bvy)
-    curvature = (
-        math.hypot(aax - bax, aay - bay)
-        + (spins[0] ** 2 + spins[1] ** 2) * arm
-        + 2.0 * max(abs(spins[0]), abs(spins[1])) * speed
-    )
-    height = REST_HEIGHT * min(a.bounding_radius, b.bounding_radius)
-    return math.sqrt(2.0 * 4.0 * curvature * height)
-
-
 def assert_sound_collision(event, world, where) -> None:
     """A Collision record is self-consistent and matches the bodies' state right after the bounce
     (the contact point is checked separately, by ``assert_contact_point_on_both``)."""
@@ -218,12 +214,9 @@ def assert_sound_collision(event, world, where) -> None:
     separation = (avx - bvx) * nx + (avy - bvy) * ny
     expected = combined_restitution(a, b) * event.approach_speed
     tolerance = 1e-9 * max(1.0, event.approach_speed)
-    if separation > expected + tolerance:
-        # only the pivot rule may send a pair apart faster, and then no faster than its minimum speed
-        floor = pivot_speed_bound(a, b, event.point)
-        assert separation <= floor + tolerance, (
-            f"{where}: separates at {separation!r}, expected {expected!r} (pivot speed at most {floor!r})"
-        )
+    if event.in_island:
+        # solved with the island's other contacts at this instant: the pair no longer closes
+        assert separation >= -tolerance, f"{where}: still closes at {separation!r} after an island's impact stage"
     else:
         assert abs(separation - expected) <= tolerance, f"{where}: separates at {separation!r}, expected {expected!r}"
 
@@ -532,9 +525,9 @@ def test_elastic_energy_is_conserved_to_1e12_over_ten_seconds(designs):
     assert_inside_box(world, "end")
 
 
-#: a scene in which a circle meets a polygon spinning at -7.4 rad/s nearly at rest, and the pivot rule
-#: lifts the contact out of the pair's motion (found by hypothesis, 2026-11-22)
-PIVOT_LIFT_SCENE = [{'at': (0.8222066421016825, 0.7413163439506529),
+#: a scene in which a circle meets a polygon spinning at -7.4 rad/s nearly at rest, pressed shut by
+#: the spin alone (found by hypothesis, 2026-11-22)
+SPUN_CONTACT_SCENE = [{'at': (0.8222066421016825, 0.7413163439506529),
   'elasticity': 1.0,
   'fixed': True,
   'mass': 1.0,
@@ -605,16 +598,14 @@ PIVOT_LIFT_SCENE = [{'at': (0.8222066421016825, 0.7413163439506529),
     designs=scenes(moving=(4, 12), obstacles=(0, 3), size=(0.02, 0.05), max_speed=1.5, boxes=True),
     elastic=st.booleans(),
 )
-@example(designs=PIVOT_LIFT_SCENE, elastic=False)
+@example(designs=SPUN_CONTACT_SCENE, elastic=False)
 def test_every_collision_exchanges_momentum_exactly(designs, elastic):
     """No gravity or friction: in each collision a gains +J n, b gains -J n at the contact point (so a moving
     pair conserves momentum, and each spin changes by I dw = r x J), nobody else's motion changes, and the
     world's momentum only changes by wall/obstacle impulses.
 
-    The pivot rule's lift of a contact pressed shut by spin alone (``stats['pivot_lifts']``) is paid
-    for by moving motion between the two bodies beyond the contact impulse (``lift_from_motion``): for
-    such a collision only the pair's momentum and angular momentum are checked, and a fixed body's
-    share of the world's momentum is what the other body gained."""
+    An impact solved inside an island (``event.in_island``) is part of that island's step, whose
+    changes are followed as a whole (below): the world's momentum still balances."""
     rng = random.Random(len(designs))
     if not elastic:
         for design in designs:
@@ -625,9 +616,8 @@ def test_every_collision_exchanges_momentum_exactly(designs, elastic):
     px0, py0 = world.momentum()
     external = [0.0, 0.0]
     pair_collisions = [0]
-    lifts = [world.stats["pivot_lifts"]]
-    # With no gravity only an island's contact forces accelerate a body (contact model
-    # "islands"): constant from one of its steps to the next, so a body's motion at an event
+    # With no gravity only an island's contact forces accelerate a body: constant from one
+    # of its steps to the next, so a body's motion at an event
     # is its recorded motion carried on by them, and what they give the world's momentum
     # (through fixed bodies; inside an island they cancel) is external.
     F = world._state.F
@@ -664,14 +654,15 @@ def test_every_collision_exchanges_momentum_exactly(designs, elastic):
         a, b = event.a, event.b
         nx, ny = event.normal
         j = event.impulse
-        lifted = world.stats["pivot_lifts"] > lifts[0]
-        lifts[0] = world.stats["pivot_lifts"]
+        if event.in_island:
+            # the island's step at this instant (followed by between_events) moved the bodies
+            assert j > 0.0 and world._islands.of((b if a.is_fixed else a).id) is not None, where
+            record()
+            return
         for body, sign in ((a, 1.0), (b, -1.0)):
             (ux, uy), (vx, vy) = velocity[body.id], body.velocity
             if body.is_fixed:
                 assert (vx, vy) == (0.0, 0.0) and body.angular_velocity == 0.0
-                continue
-            if lifted:
                 continue
             m = body.mass
             scale = max(m * math.hypot(ux, uy), j, 1e-300)
@@ -693,30 +684,14 @@ def test_every_collision_exchanges_momentum_exactly(designs, elastic):
             scale = a.mass * math.hypot(*velocity[a.id]) + b.mass * math.hypot(*velocity[b.id])
             for k in (0, 1):
                 assert abs(after[k] - before[k]) <= 1e-13 * scale, f"{where}: pair momentum {before} -> {after}"
-            if lifted:
-                # angular momentum about the contact point
-                px, py = event.point
-                turned = 0.0
-                size = 0.0
-                for body in (a, b):
-                    (ux, uy), (vx, vy) = velocity[body.id], body.velocity
-                    rx, ry = body.position[0] - px, body.position[1] - py
-                    turned += body.mass * (rx * (vy - uy) - ry * (vx - ux)) + body.inertia * (
-                        body.angular_velocity - spin[body.id])
-                    size += body.mass * math.hypot(rx, ry) * math.hypot(ux, uy) + body.inertia * abs(spin[body.id])
-                assert abs(turned) <= 1e-12 * size, f"{where}: pair angular momentum changed by {turned!r}"
-            if min(a.elasticity, b.elasticity) == 1.0 and not lifted:
+            if min(a.elasticity, b.elasticity) == 1.0:
                 e0 = _kinetic(a, velocity[a.id], spin[a.id]) + _kinetic(b, velocity[b.id], spin[b.id])
                 e1 = _kinetic(a, a.velocity, a.angular_velocity) + _kinetic(b, b.velocity, b.angular_velocity)
                 assert abs(e1 - e0) <= 1e-13 * e0, f"{where}: pair energy {e0!r} -> {e1!r}"
         else:
             body, sign = (a, 1.0) if not a.is_fixed else (b, -1.0)
-            if lifted:
-                external[0] += body.mass * (body.velocity[0] - velocity[body.id][0])
-                external[1] += body.mass * (body.velocity[1] - velocity[body.id][1])
-            else:
-                external[0] += sign * j * nx
-                external[1] += sign * j * ny
+            external[0] += sign * j * nx
+            external[1] += sign * j * ny
             if combined_restitution(a, b) == 1.0:
                 e0 = _kinetic(body, velocity[body.id], spin[body.id])
                 e1 = _kinetic(body, body.velocity, body.angular_velocity)

@@ -60,7 +60,6 @@ FIELDS = [
     "max_overlap_sampled",
     "escaped",
     "final_time",
-    "contact",
     "island_steps",
 ]
 
@@ -215,11 +214,11 @@ def scene_spec(seed: int) -> dict:
     raise RuntimeError(f"corpus: scene {seed} could not be placed in {MAX_ATTEMPTS} draws")
 
 
-def build(spec: dict, contact: str = "rules"):
-    """A fresh ``pge.World`` holding the scene ``spec`` describes, with contact model ``contact``."""
+def build(spec: dict):
+    """A fresh ``pge.World`` holding the scene ``spec`` describes."""
     from pge import World
 
-    world = World(gravity=spec["gravity"], contact=contact)
+    world = World(gravity=spec["gravity"])
     closed_box(world, *BOX, thickness=spec["wall"], elasticity=spec["wall_elasticity"],
                friction=spec["wall_friction"])
     for body in spec["fixed"] + spec["moving"]:
@@ -255,11 +254,10 @@ def escaped(world, box=BOX) -> list:
     return out
 
 
-def run_scene(seed: int, until: float, contact: str = "rules") -> dict:
-    """Build scene ``seed`` (contact model ``contact``), run it to ``until`` in this process and
-    measure it (one CSV row)."""
+def run_scene(seed: int, until: float) -> dict:
+    """Build scene ``seed``, run it to ``until`` in this process and measure it (one CSV row)."""
     spec = scene_spec(seed)
-    world = build(spec, contact)
+    world = build(spec)
     moving = len(spec["moving"])
     row = {"seed": seed, "bodies": len(world), "moving": moving, "gravity": spec["gravity"][1] != 0.0}
     start = time.perf_counter()
@@ -291,7 +289,6 @@ def run_scene(seed: int, until: float, contact: str = "rules") -> dict:
         row["overlap_pairs"] = f"{type(error).__name__}"
     row["escaped"] = len(escaped(world))
     row["final_time"] = t
-    row["contact"] = contact
     row["island_steps"] = stats["island_steps"]
     return row
 
@@ -308,8 +305,8 @@ def _worker(inbox, outbox):
         job = inbox.recv()
         if job is None:
             return
-        seed, until, contact = job
-        outbox.send(("done", run_scene(seed, until, contact)))
+        seed, until = job
+        outbox.send(("done", run_scene(seed, until)))
 
 
 class _Slot:
@@ -332,8 +329,7 @@ class _Slot:
         self.proc.join()
 
 
-def run_corpus(seeds, until: float, limit: float, processes: int = 2, progress=print, on_row=None,
-               contact: str = "rules") -> list[dict]:
+def run_corpus(seeds, until: float, limit: float, processes: int = 2, progress=print, on_row=None) -> list[dict]:
     """Run every seed in worker processes; returns the rows in seed order.
 
     ``on_row(rows)`` is called with the rows so far (seed order) after each scene; an interrupt
@@ -354,7 +350,7 @@ def run_corpus(seeds, until: float, limit: float, processes: int = 2, progress=p
                  flush=True)
 
     try:
-        _schedule(slots, pending, rows, until, limit, record, contact)
+        _schedule(slots, pending, rows, until, limit, record)
     except KeyboardInterrupt:
         progress(f"interrupted: keeping the {len(rows)} scenes finished")
         for slot in slots:
@@ -371,13 +367,13 @@ def run_corpus(seeds, until: float, limit: float, processes: int = 2, progress=p
     return [rows[s] for s in sorted(rows)]
 
 
-def _schedule(slots, pending, rows, until, limit, record, contact):
+def _schedule(slots, pending, rows, until, limit, record):
     while pending or any(s.seed is not None for s in slots):
         for slot in slots:
             if slot.seed is None and pending and slot.ready:
                 slot.seed = pending.pop(0)
                 slot.started = time.perf_counter()
-                slot.jobs.send((slot.seed, until, contact))
+                slot.jobs.send((slot.seed, until))
         for slot in slots:
             if slot.results.poll():
                 try:
@@ -514,7 +510,6 @@ def main(argv=None) -> int:
     run.add_argument("--until", type=float, default=20.0, help="simulated seconds (20)")
     run.add_argument("--timeout", type=float, default=120.0, help="wall-time limit per scene, s (120)")
     run.add_argument("--processes", type=int, default=2, help="worker processes (at most 2)")
-    run.add_argument("--contact", choices=("rules", "islands"), default="rules", help="contact model (rules)")
     run.add_argument("--out", default=os.path.join("benchmarks", "results", "corpus.csv"))
     run.add_argument("--plot", default=None, help="histogram path (default: <out dir>/corpus_wall.png)")
     summ = sub.add_parser("summary", help="print the summary of a CSV written by run")
@@ -546,8 +541,7 @@ def main(argv=None) -> int:
     processes = max(1, min(2, args.processes))
     begin = time.perf_counter()
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-    rows = run_corpus(args.seeds, args.until, args.timeout, processes, on_row=lambda rows: _write(rows, args.out),
-                      contact=args.contact)
+    rows = run_corpus(args.seeds, args.until, args.timeout, processes, on_row=lambda rows: _write(rows, args.out))
     elapsed = time.perf_counter() - begin
     _write(rows, args.out)
     print()

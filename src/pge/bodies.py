@@ -163,25 +163,18 @@ class Body:
 
     @property
     def resting_on(self) -> "Body | None":
-        """The body this one rests or slides on, or None while free. In the contact model
-        "islands": the body it presses on hardest at its island's last step (the one it fell
-        asleep on, while asleep)."""
+        """The body this one rests, slides or rolls on, or None while free: the one it pressed
+        on hardest at its island's last step (the one it fell asleep on, while asleep)."""
         _, world = self._row()
-        if world._islands is not None:
-            support = world._islands.support(self.id)
-        else:
-            support = int(world._state.I[self.id, L.SUPPORT])
+        support = world._islands.support(self.id)
         return world._handles.get(support) if support >= 0 else None
 
     @property
     def asleep(self) -> bool:
-        """True while the body sleeps in a pile that contact forces hold still, or in a
-        sleeping island (contact model "islands"): it makes no events until something
-        touches it or it is changed."""
+        """True while the body sleeps in an island that contact forces hold still: it makes no
+        events until something touches it or it is changed."""
         _, world = self._row()
-        if world._islands is not None:
-            return world._islands.asleep(self.id)
-        return bool(world._state.I[self.id, L.SLEEP_NEXT] >= 0)
+        return world._islands.asleep(self.id)
 
     @property
     def inertia(self) -> float | None:

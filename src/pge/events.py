@@ -41,6 +41,12 @@ class Collision(NamedTuple):
     ``impulse`` is the magnitude of the impulse exchanged along the normal
     (mass x velocity units) and ``approach_speed`` the normal speed at which
     the bodies closed (positive).
+
+    ``in_island`` is True for an impact too slow for free flight on a body of an
+    island (docs/contact.md, "The model in one paragraph"): it was solved together
+    with that island's contacts at the same instant, so ``impulse`` is this
+    pair's share of that solve, and the bodies' change of motion also holds the
+    island's other contact impulses. False for an exact two-body impulse.
     """
 
     time: float
@@ -50,6 +56,7 @@ class Collision(NamedTuple):
     normal: tuple[float, float]
     impulse: float
     approach_speed: float
+    in_island: bool = False
 
     kind = "collision"
 

@@ -47,7 +47,10 @@ _OPTIONS = frozenset(
 class World:
     """A 2D world of circles and convex polygons moving under constant accelerations.
 
-    Every contact is predicted at its exact time; nothing is stepped.
+    Every contact between bodies in flight is predicted at its exact time. Bodies in
+    persistent contact (resting, stacked, sliding, rolling, tipping) form islands whose
+    contacts are solved together at short steps, while their contacts with everything
+    else stay exact (docs/contact.md).
 
     Parameters:
 
@@ -70,8 +73,9 @@ class World:
       ``restitution`` (default ``"max"``, so giving one body friction is
       enough).
     * ``rest_height``: a bounce that would rise less than this times the
-      body's bounding radius ends in resting contact (default 1e-4): the body
-      then rests or slides on the surface instead of bouncing for ever.
+      smaller bounding radius of the pair is persistent contact (default 1e-4):
+      the two bodies join an island and rest, slide or roll on each other
+      instead of bouncing for ever.
     * ``broadphase``: switches for measuring the broad phase, a dict with any of
       ``"short_circuit"`` (True: the sound bounding-circle test, the default;
       False: off; ``"lecture"``: the lecture's unsound test), ``"boxes"`` (the
@@ -82,11 +86,9 @@ class World:
       overlap (ValueError naming them); True lets each overlapping pair pass
       through each other until it has separated, with one ``OverlapWarning``
       per pair, as PGE does (the classic ``pge`` module sets it).
-    * ``contact``: the contact model. ``"rules"`` (default): resting contact by the
-      rules of ``pge.core.contact`` (rest, piles, the pivot rule, sleep). ``"islands"``:
-      bodies in persistent contact form islands whose contacts are solved together every
-      ``contact_step`` seconds (default 1/240), while every other contact stays exact;
-      see docs/contact.md.
+    * ``contact_step``: the islands' step length in seconds (default 1/240): how
+      often the contacts of bodies in persistent contact are solved; see
+      docs/contact.md.
 
     A run raises ``pge.errors.TooFastError`` for a body too fast for the
     clock, and ``pge.errors.EventStormError`` for a run of events the clock
@@ -110,7 +112,6 @@ class World:
         rest_height: float = 1e-4,
         allow_overlap: bool = False,
         broadphase=None,
-        contact: str = "rules",
         contact_step: float | None = None,
     ) -> None:
         self._gravity = check_vector("World", "gravity", gravity)
@@ -138,15 +139,9 @@ class World:
             raise TypeError(f"World: allow_overlap must be True or False, got {allow_overlap!r}")
         self._allow_overlap = allow_overlap
         self._state.Q[L.BROADPHASE] = _broadphase_bits(broadphase)
-        if contact not in ("rules", "islands"):
-            raise ValueError(f"World: contact must be 'rules' or 'islands', got {contact!r}")
-        self._contact = contact
         step = ISLAND_STEP if contact_step is None else _positive("World", "contact_step", contact_step)
-        self._islands = None
-        if contact == "islands":
-            self._state.Q[L.CONTACT_MODEL] = L.ISLANDS
-            self._state.P[L.CONTACT_STEP] = step
-            self._islands = Islands(self, step)
+        self._state.P[L.CONTACT_STEP] = step
+        self._islands = Islands(self, step)
         self._handles: dict[int, Body] = {}
         self._primed = False
         self._unchecked: set[int] = set()
@@ -188,7 +183,7 @@ class World:
         self._gravity = gravity
         moving = [i for i in self._handles if not self._state.I[i, L.FIXED]]
         for i in moving:
-            self._release(i)
+            self._islands.wake_near(i)
         for i in moving:
             engine.advance(self._state.F, i, self.time)
             self._update_acceleration(i)
@@ -272,9 +267,9 @@ class World:
         kind), collisions, pair_collisions (both bodies moving), horizons (swept-box
         renewals), timers, frames, stale (invalidated queue entries skipped), grazes,
         candidates (pairs gathered from the grid), box_rejects, bound_rejects
-        (short-circuit test), predictions (exact time-of-impact solves), hits, rests
-        (bounces that ended in resting contact), releases (bodies lifted off a support),
-        contact_changes (a resting body left its edge or stopped sliding)."""
+        (short-circuit test), predictions (exact time-of-impact solves), hits, sleeps and
+        wakes (of islands), joins (collisions that were persistent contact, or that an
+        island took in), island_steps."""
         return {name: int(value) for name, value in zip(L.STAT_NAMES, self._state.stats)}
 
     @property
@@ -346,8 +341,7 @@ class World:
         F[i] = 0.0
         I[i] = 0
         I[i, L.CELL] = I[i, L.NEXT] = I[i, L.PREV] = -1
-        I[i, L.SUPPORT] = I[i, L.RIDER_HEAD] = I[i, L.EDGE_OWNER] = I[i, L.SLEEP_NEXT] = I[i, L.ISLAND] = I[i, L.LAST_OTHER] = -1
-        F[i, L.SLEEP_TRY] = -math.inf
+        I[i, L.ISLAND] = I[i, L.LAST_OTHER] = -1
         F[i, L.FRICTION] = friction
         F[i, L.X], F[i, L.Y] = position
         F[i, L.T0] = self.time
@@ -410,16 +404,14 @@ class World:
         """
         body = self._own(body)
         i = body.id
-        released = self._release(i)
+        self._islands.wake_near(i)
         engine.advance(self._state.F, i, self.time)
         self._forget(i)
-        self._changed([j for j in released if j != i])
 
     def _forget(self, i: int) -> None:
         for hook in tuple(self._removal_hooks):
             hook(i)
-        if self._islands is not None:
-            self._islands.leave(i)
+        self._islands.leave(i)
         self._watchers.pop(i, None)
         state = self._state
         was_fixed = bool(state.I[i, L.FIXED])
@@ -455,18 +447,7 @@ class World:
             F[i, L.FREE_AY] = F[i, L.OWN_AY] + F[i, L.SPRING_AY] + self._gravity[1]
         F[i, L.AX] = F[i, L.FREE_AX]
         F[i, L.AY] = F[i, L.FREE_AY]
-        if self._islands is not None:
-            F[i, L.ALPHA] = 0.0  # an island's contact forces are planned again at its next step
-
-    def _release(self, i: int) -> list[int]:
-        """Release body ``i`` from resting contact, and every body resting on it; returns
-        the bodies whose motion changed (advanced to now)."""
-        state = self._state
-        if self._islands is not None:
-            self._islands.wake_near(i)
-            return []
-        count = engine.release_body(state.S, i, self.time, state.group)
-        return [int(j) for j in state.group[:count]]
+        F[i, L.ALPHA] = 0.0  # an island's contact forces are planned again at its next step
 
     def _set_inverse_mass(self, i: int, shape=None) -> None:
         """Inverse mass and inverse moment of inertia about the centroid (0 if fixed)."""
@@ -496,7 +477,7 @@ class World:
         x, y = check_vector(body.label(), "position", position)
         i = body.id
         F = self._state.F
-        self._changed(self._release(i))
+        self._islands.wake_near(i)
         engine.advance(F, i, self.time)
         old = (F[i, L.X], F[i, L.Y])
         F[i, L.X], F[i, L.Y] = x, y
@@ -508,7 +489,7 @@ class World:
         body = self._own(body)
         angle = check_number(body.label(), "angle", angle)
         i = body.id
-        self._changed(self._release(i))
+        self._islands.wake_near(i)
         engine.advance(self._state.F, i, self.time)
         old = float(self._state.F[i, L.ANGLE])
         self._orient(i, angle)
@@ -536,10 +517,10 @@ class World:
         if self._state.I[i, L.FIXED]:
             F[i, L.HELD_VX], F[i, L.HELD_VY] = vx, vy
             return
-        released = self._release(i)
+        self._islands.wake_near(i)
         engine.advance(F, i, self.time)
         F[i, L.VX], F[i, L.VY] = vx, vy
-        self._changed([i] + released)
+        self._changed([i])
 
     def apply_impulse(self, body: Body, impulse) -> None:
         """Change a moving body's velocity by ``impulse / mass`` now.
@@ -554,11 +535,11 @@ class World:
             raise ValueError(f"{body.label()} is fixed and cannot take an impulse")
         if math.isnan(F[i, L.MASS]):
             raise ValueError(f"{body.label()} has no mass; give it one before applying an impulse")
-        released = self._release(i)
+        self._islands.wake_near(i)
         engine.advance(F, i, self.time)
         F[i, L.VX] += jx * F[i, L.INV_MASS]
         F[i, L.VY] += jy * F[i, L.INV_MASS]
-        self._changed([i] + released)
+        self._changed([i])
 
     def set_acceleration(self, body: Body, acceleration) -> None:
         """Set a body's own constant acceleration (added to gravity) from now on."""
@@ -566,13 +547,12 @@ class World:
         ax, ay = check_vector(body.label(), "acceleration", acceleration)
         i = body.id
         F = self._state.F
-        released = self._release(i)
+        self._islands.wake_near(i)
         engine.advance(F, i, self.time)
         F[i, L.OWN_AX], F[i, L.OWN_AY] = ax, ay
         self._update_acceleration(i)
         if not self._state.I[i, L.FIXED]:
-            released.append(i)
-        self._changed(released)
+            self._changed([i])
 
     def set_mass(self, body: Body, mass) -> None:
         """Set a body's mass (positive and finite)."""
@@ -586,7 +566,7 @@ class World:
         body = self._own(body)
         i = body.id
         self._state.F[i, L.FRICTION] = _check_friction(body.label(), friction)
-        self._changed(self._release(i))
+        self._islands.wake_near(i)
 
     def set_elasticity(self, body: Body, elasticity) -> None:
         """Set a body's elasticity, between 0 and 1."""
@@ -603,10 +583,10 @@ class World:
         if self._state.I[i, L.FIXED]:
             F[i, L.HELD_OMEGA] = omega
             return
-        released = self._release(i)
+        self._islands.wake_near(i)
         engine.advance(F, i, self.time)
         F[i, L.OMEGA] = omega
-        self._changed([i] + released)
+        self._changed([i])
 
     def set_fixed(self, body: Body, fixed: bool = True) -> None:
         """Fix a body (immovable, infinitely heavy) or release it: it then moves on with the
@@ -618,11 +598,10 @@ class World:
         fixed = _check_flag(body.label(), "fixed", fixed)
         if fixed == bool(I[i, L.FIXED]):
             return
-        released = self._release(i)
+        self._islands.wake_near(i)
         engine.advance(F, i, self.time)
         if fixed:
-            if self._islands is not None:
-                self._islands.leave(i)
+            self._islands.leave(i)
             F[i, L.HELD_VX], F[i, L.HELD_VY] = F[i, L.VX], F[i, L.VY]
             F[i, L.HELD_OMEGA] = F[i, L.OMEGA]
             F[i, L.VX] = F[i, L.VY] = F[i, L.OMEGA] = 0.0
@@ -638,7 +617,7 @@ class World:
             if not fixed:
                 state.rebuild_static()  # it leaves the static lists
                 self._fit_grid(i)
-            self._touch([i] + [j for j in released if j != i])
+            self._touch([i])
 
     # ------------------------------------------------------------------ springs
 
@@ -709,7 +688,7 @@ class World:
     def _set_spring_accelerations(self, ids, ax, ay) -> None:
         """Give moving bodies ``ids`` the spring accelerations ``ax[k], ay[k]`` from now on
         (added to their own acceleration and gravity); bodies whose acceleration changes
-        are released from resting contact and predicted again."""
+        wake their islands and are predicted again."""
         state = self._state
         F, I = state.F, state.I
         changed: list[int] = []
@@ -719,7 +698,7 @@ class World:
                 continue
             if F[i, L.SPRING_AX] == x and F[i, L.SPRING_AY] == y:
                 continue
-            changed.extend(self._release(i))
+            self._islands.wake_near(i)
             engine.advance(F, i, self.time)
             F[i, L.SPRING_AX], F[i, L.SPRING_AY] = x, y
             self._update_acceleration(i)
@@ -857,12 +836,14 @@ class World:
             if code == L.TOO_FAST:
                 raise self._too_fast_error()
             record = None
+            absorbed = False
             if code == L.JOINED:
                 a = int(out[L.OUT_A])
                 b = int(out[L.OUT_B])
                 struck = self._islands.collided(a, b, float(out[L.OUT_JOIN]), float(out[L.OUT_TIME]))
                 if out[L.OUT_JOIN] == L.ABSORB:
                     out[L.OUT_IMPULSE] = struck
+                    absorbed = True
                 I = state.I
                 if out[L.OUT_IMPULSE] != 0.0 and (notify_all or I[a, L.NOTIFY] or I[b, L.NOTIFY]):
                     code = L.COLLIDED
@@ -877,6 +858,7 @@ class World:
                     (float(out[L.OUT_NX]), float(out[L.OUT_NY])),
                     float(out[L.OUT_IMPULSE]),
                     float(out[L.OUT_SPEED]),
+                    absorbed,
                 )
                 self._notify(record)
             elif code == L.FIRED_TIMER:
@@ -922,10 +904,9 @@ class World:
             text += f" spinning at {F[i, L.OMEGA]:.4g} rad/s"
         if I[i, L.FIXED]:
             text += " (fixed)"
-        support = int(I[i, L.SUPPORT])
-        if support >= 0 and support in self._handles:
-            mode = "sliding" if I[i, L.REST_MODE] == L.SLIDING else "stuck"
-            text += f", resting ({mode}) on {self._handles[support].label()}"
+        island = self._islands.of(i)
+        if island is not None:
+            text += f", in an island of {len(island.members)} bodies" + (" (asleep)" if island.asleep else "")
         return text
 
     def _storm_error(self) -> EventStormError:
@@ -934,7 +915,7 @@ class World:
         out, Q = state.out, state.Q
         when = float(out[L.OUT_TIME])
         ids = [int(out[k]) for k in (L.OUT_A, L.OUT_B) if int(out[k]) >= 0]
-        names = ("collisions", "contact changes", "horizons", "timers", "frames")
+        names = ("collisions", "horizons", "timers", "frames")
         kinds = {name: int(Q[L.STORM_KINDS + k]) for k, name in enumerate(names) if Q[L.STORM_KINDS + k]}
         span = when - float(state.P[L.STORM_START])
         ticks = span / max(math.ulp(when), 5e-324)

@@ -53,7 +53,7 @@ from pge.contact.manifold import (
     polygon_polygon_points,
 )
 from pge.core import layout as L
-from pge.core.contact import combine
+from pge.core.response import combine
 from pge.core.engine import touch
 from pge.core.grid import gather
 from pge.core.motion import advance, orient
@@ -96,7 +96,7 @@ def _start(S, members, local, h, t):
         i = members[k]
         local[i] = k
         advance(F, i, t)
-        orient(F, I, S[2], S[18], i, t)
+        orient(F, I, S[2], S[17], i, t)
         ax = F[i, L.FREE_AX]
         ay = F[i, L.FREE_AY]
         now[k, 0] = F[i, L.VX]
@@ -156,7 +156,7 @@ def _collect(S, members, local, margin, t):
             if I[j, L.FIXED] != 0:
                 other = -1
                 pad = margin[k] + own
-                orient(F, I, S[2], S[18], j, t)
+                orient(F, I, S[2], S[17], j, t)
             elif I[j, L.ISLAND] == island and local[j] > k:
                 other = local[j]
                 pad = margin[k] + margin[other] + CONTACT_MARGIN * min(F[i, L.REACH], F[j, L.REACH])
@@ -239,8 +239,6 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
         rows[c, KT] = ma + mb + ia * rat * rat + ib * rbt * rbt
         rows[c, MU] = combine(F[i, L.FRICTION], F[j, L.FRICTION], Q[L.FRICTION_RULE])
         separation = rows[c, SEPARATION]
-        # may close by its gap, no more; an overlap stops closing (``_push_out`` moves it out)
-        rows[c, TARGET] = -separation / h if separation > 0.0 else 0.0
         # The impact stage, on the velocities now: a touching point stops closing, or
         # bounces if it closes fast enough to bounce higher than the rest height; a point
         # with a gap may close by it within the step, no faster.
@@ -267,7 +265,17 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
             if at < warm_keys.shape[0] and warm_keys[at] == key:
                 rows[c, LAMBDA_N] = warm_impulses[at, 0]
                 rows[c, LAMBDA_T] = warm_impulses[at, 1]
+    _force_targets(rows, count, h)
     return keys
+
+
+@njit(cache=True)
+def _force_targets(rows, count, h):
+    """Each row's target for the force stage over a step of length ``h``: a gap may close by
+    itself, no more; an overlap stops closing (``_push_out`` moves it out)."""
+    for c in range(count):
+        separation = rows[c, SEPARATION]
+        rows[c, TARGET] = -separation / h if separation > 0.0 else 0.0
 
 
 @njit(cache=True, inline="always")
@@ -1274,6 +1282,13 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
         speed = _speed_scale(F, members, now, h, pull)
     sweeps, struck = _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y)
+    turned = _turn_limit(S, members, now, h)
+    if turned < h:
+        # The impacts set a polygon turning faster than the step was cut for.
+        h = turned
+        natural = min(natural, turned)
+        _force_targets(rows, count, h)
+        speed = _speed_scale(F, members, now, h, pull)
     end = np.empty_like(now)
     for k in range(members.shape[0]):
         i = members[k]

@@ -22,16 +22,14 @@ ANGLE, OMEGA = 22, 23
 HELD_VX, HELD_VY = 24, 25  # velocity kept while fixed, restored by unfix
 MASS = 26  # nan until given
 FREE_AX, FREE_AY = 27, 28  # own acceleration + gravity (zero if fixed): what the body feels when free
-REST_NX, REST_NY = 29, 30  # while resting: unit contact normal, from the support towards the body
-FRICTION = 31  # Coulomb friction coefficient
-SPRING_AX, SPRING_AY = 32, 33  # acceleration from springs, held constant between refreshes
-INV_INERTIA = 34  # 1 / moment of inertia about the reference point, 0 for fixed bodies
-ORIENT = 35  # the angle the body's outline rows in OL are turned to
-HELD_OMEGA = 36  # angular velocity kept while fixed, restored by unfix
-SLEEP_TRY = 37  # when the body last failed to fall asleep (pge.core.sleep)
-ALPHA = 38  # angular acceleration: nonzero only for a circle rolling or skidding on a flat rest
-LAST_HIT = 39  # contact model ISLANDS: time of the body's last collision (with I[LAST_OTHER])
-NF = 40
+FRICTION = 29  # Coulomb friction coefficient
+SPRING_AX, SPRING_AY = 30, 31  # acceleration from springs, held constant between refreshes
+INV_INERTIA = 32  # 1 / moment of inertia about the reference point, 0 for fixed bodies
+ORIENT = 33  # the angle the body's outline rows in OL are turned to
+HELD_OMEGA = 34  # angular velocity kept while fixed, restored by unfix
+ALPHA = 35  # angular acceleration: an island's contact torque over its current step
+LAST_HIT = 36  # time of the body's last collision (with I[LAST_OTHER])
+NF = 37
 
 # ---- I: int64 per body -------------------------------------------------------
 KIND = 0  # pge.toi.CIRCLE or POLYGON
@@ -44,18 +42,9 @@ OUTLINE_START, OUTLINE_N = 7, 8  # polygon rows in the outline array
 NOTIFY = 9  # collisions of this body are reported to Python
 STAMP = 10  # de-duplication stamp used while gathering candidates
 MARK = 11  # pair-once mark used while predicting a group of bodies
-SUPPORT = 12  # body this one rests on (-1: free); the support is fixed or itself resting
-RIDER_HEAD = 13  # first body resting on this one (-1: none)
-RIDER_NEXT, RIDER_PREV = 14, 15  # siblings in the support's rider list
-REST_MODE = 16  # NOT_RESTING, SLIDING or STUCK (static friction holds it)
-EDGE_OWNER = 17  # while resting on a flat contact: the body whose edge carries it (-1: curved contact)
-EDGE_INDEX = 18  # that edge's index in its owner's outline
-SLEEP_NEXT = 19  # while asleep: the next body of its island (a ring); -1 when awake
-ISLAND = 20  # contact model "islands": the island the body belongs to (-1: none), see pge.contact
-LAST_OTHER = 21  # contact model ISLANDS: the body of its last collision (-1: none)
-NI = 22
-
-NOT_RESTING, SLIDING, STUCK = 0, 1, 2
+ISLAND = 12  # the island the body belongs to (-1: none), see pge.contact
+LAST_OTHER = 13  # the body of its last collision (-1: none)
+NI = 14
 
 # ---- P: float64 world parameters --------------------------------------------
 TIME = 0
@@ -64,9 +53,9 @@ CELL_SIZE, INV_CELL = 3, 4
 TRAVEL = 5  # distance a moving body may travel within one horizon
 MARGIN = 6  # safety margin added to every swept box
 OVERLAP_TOLERANCE = 7
-REST_HEIGHT = 8  # a bounce lower than this times the body's bounding radius becomes resting contact
+REST_HEIGHT = 8  # a contact whose bounce would rise less than this times the smaller reach is persistent
 STORM_START = 9  # time of the first event of the current run of close events (the progress watch)
-CONTACT_STEP = 10  # contact model ISLANDS: the islands' step length h
+CONTACT_STEP = 10  # the islands' step length h
 NP = 11
 
 # ---- Q: int64 world parameters -----------------------------------------------
@@ -81,17 +70,13 @@ FRICTION_RULE = 8  # how two friction coefficients combine (codes as RULE)
 PENDING_N = 9  # bodies waiting in `pending` to be predicted
 PENDING_DONE = 10  # how many of them are done
 PENDING_MARK = 11  # pair-once mark of the current batch
-PILES_N = 12  # resting bodies in `piles` whose pile must be solved again before the event ends
 STORM_RUN = 13  # events in the current run of close events (the progress watch), kept across returns
 STORM_CAP = 14  # events a run may hold before it is a storm (set by Python from the number of bodies)
 FAST_BODY = 15  # a body whose travel step the clock cannot resolve (-1: none), found by `place`
-STORM_KINDS = 16  # first of five counts, one per event kind, of the current run
-EXCUSED_N = 21  # pairs in `excused`: they overlapped when the run began and do not collide yet
-BROADPHASE = 22  # broad-phase switches (bits below; 0: every stage on, the sound default)
-CONTACT_MODEL = 23  # RULES (resting-contact rules in core.contact) or ISLANDS (pge.contact)
-NQ = 24
-
-RULES, ISLANDS = 0, 1  # the values of Q[CONTACT_MODEL]
+STORM_KINDS = 16  # first of NKINDS counts, one per event kind, of the current run
+EXCUSED_N = 20  # pairs in `excused`: they overlapped when the run began and do not collide yet
+BROADPHASE = 21  # broad-phase switches (bits below; 0: every stage on, the sound default)
+NQ = 22
 
 # ---- Q[BROADPHASE] bits: stages switched off to measure what they save (World.broadphase)
 NO_SHORT_CIRCUIT = 1  # skip cannot_touch_before: every box-overlapping pair is solved exactly
@@ -114,17 +99,8 @@ STAT_NAMES = (
     "bound_rejects",
     "predictions",
     "hits",
-    "rests",
-    "releases",
-    "contact_changes",
-    "pivot_lifts",
-    "unpaid_lifts",
-    "stops",
     "sleeps",
     "wakes",
-    "tips",
-    "far_payments",
-    "pile_solves",
     "joins",
     "island_steps",
 )
@@ -142,32 +118,23 @@ STAT_NAMES = (
     S_BOUND_REJECTS,
     S_PREDICTIONS,
     S_HITS,
-    S_RESTS,
-    S_RELEASES,
-    S_CONTACT_CHANGES,
-    S_PIVOT_LIFTS,
-    S_UNPAID_LIFTS,
-    S_STOPS,
     S_SLEEPS,
     S_WAKES,
-    S_TIPS,
-    S_FAR_PAYMENTS,
-    S_PILE_SOLVES,
     S_JOINS,
     S_ISLAND_STEPS,
-) = range(26)
-NSTATS = 26
+) = range(17)
+NSTATS = 17
 
 # ---- event kinds (high bits of the heap key; equal times pop in this order) --
-COLLISION, CONTACT_EVENT, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3, 4
-LEAVE, STOP_SLIDING = 0, 1  # what a CONTACT_EVENT is about
+COLLISION, HORIZON_EVENT, TIMER, FRAME = 0, 1, 2, 3
+NKINDS = 4
 KIND_SHIFT = 58
 ID_SHIFT = 29
 
 # ---- out: the record of the event that returned control to Python -----------
 OUT_TIME, OUT_A, OUT_B, OUT_PX, OUT_PY, OUT_NX, OUT_NY, OUT_IMPULSE, OUT_SPEED, OUT_ID, OUT_EPOCH = range(11)
 OUT_JOIN = 11  # what the collision in `out` asks of the islands: one of the codes below
-#: what ``out[OUT_JOIN]`` asks of the islands (contact model ISLANDS): nothing; join the two
+#: what ``out[OUT_JOIN]`` asks of the islands: nothing; join the two
 #: bodies' islands (a persistent contact); wake the island hit (no join); take the impact
 #: into the island hit, whose step solves it with its contacts (no impulse applied yet)
 NO_JOIN, JOIN, WAKE, ABSORB = 0.0, 1.0, 2.0, 3.0

@@ -38,8 +38,8 @@ def nearest_normal(S, i, j):
     I = S[1]
     OL = S[2]
     P = S[3]
-    orient(F, I, OL, S[18], i, P[L.TIME])
-    orient(F, I, OL, S[18], j, P[L.TIME])
+    orient(F, I, OL, S[17], i, P[L.TIME])
+    orient(F, I, OL, S[17], j, P[L.TIME])
     xi, yi, _, _ = state_at(F, i, P[L.TIME])
     xj, yj, _, _ = state_at(F, j, P[L.TIME])
     dx = xi - xj

@@ -76,7 +76,7 @@ def place(S, i):
     P = S[3]
     Q = S[4]
     now = P[L.TIME]
-    orient(F, I, S[2], S[18], i, now)
+    orient(F, I, S[2], S[17], i, now)
     ax = F[i, L.AX]
     ay = F[i, L.AY]
     x, y, vx, vy = state_at(F, i, now)
@@ -176,7 +176,6 @@ def predict(S, i, mark):
     by1 = F[i, L.BOX_Y1]
     ifixed = I[i, L.FIXED] != 0
     ikind = I[i, L.KIND]
-    isupport = I[i, L.SUPPORT]
     iisland = I[i, L.ISLAND]
     for k in range(n):
         j = scratch[k]
@@ -184,8 +183,6 @@ def predict(S, i, mark):
             continue
         if ifixed and I[j, L.FIXED] != 0:
             continue
-        if j == isupport or I[j, L.SUPPORT] == i:
-            continue  # a resting contact is not a collision
         if iisland >= 0 and (I[j, L.ISLAND] == iisland or I[j, L.FIXED] != 0):
             continue  # the island's step solves its contacts (pge.contact.island)
         if ifixed and I[j, L.ISLAND] >= 0:
@@ -285,7 +282,7 @@ def predict(S, i, mark):
 def still_excused(S, i, j):
     """Whether ``i`` and ``j`` are a pair that overlapped when the run began and overlap
     still (they do not collide); a pair found apart is no longer excused."""
-    excused = S[20]
+    excused = S[18]
     Q = S[4]
     a = min(i, j)
     b = max(i, j)
@@ -309,7 +306,7 @@ def _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window, still):
     circle) pair is turned round."""
     F = S[0]
     I = S[1]
-    OB = S[18]
+    OB = S[17]
     if I[i, L.KIND] == CIRCLE:
         if I[j, L.KIND] == CIRCLE:
             return _INF, 0

@@ -20,12 +20,8 @@ class EngineState:
     def __init__(self, capacity: int = 64, event_capacity: int = 1024) -> None:
         self.n = 0  # body rows in use (removed bodies keep their rows)
         self.F = np.zeros((capacity, L.NF))
-        self.F[:, L.SLEEP_TRY] = -np.inf
         self.I = np.zeros((capacity, L.NI), dtype=np.int64)
         self.I[:, L.CELL] = -1
-        self.I[:, L.SUPPORT] = -1
-        self.I[:, L.RIDER_HEAD] = -1
-        self.I[:, L.SLEEP_NEXT] = -1
         self.I[:, L.ISLAND] = -1
         self.I[:, L.LAST_OTHER] = -1
         self.OL = np.zeros((64, 5))  # polygon outlines turned to each body's ORIENT angle
@@ -50,8 +46,6 @@ class EngineState:
         self.out = np.zeros(L.NOUT)
         self.scratch = np.zeros(capacity, dtype=np.int64)
         self.pending = np.zeros(4 * capacity + 16, dtype=np.int64)
-        self.group = np.zeros(4 * capacity + 16, dtype=np.int64)
-        self.piles = np.zeros(4 * capacity + 16, dtype=np.int64)
         self.excused = np.zeros((4, 2), dtype=np.int64)  # pairs that may overlap until they separate
         self._update_min_free()
         self.refresh()
@@ -76,9 +70,7 @@ class EngineState:
             self.out,
             self.scratch,
             self.pending,
-            self.group,
             self.OB,
-            self.piles,
             self.excused,
         )
 
@@ -94,8 +86,8 @@ class EngineState:
         self.Q[L.EXCUSED_N] = n + 1
 
     def _update_min_free(self) -> None:
-        # One event touches at most every body once (two pushes each: horizon and
-        # contact change); one prediction pushes at most one event per other body.
+        # One event touches at most every body once (a push each, its horizon); one
+        # prediction pushes at most one event per other body.
         self.Q[L.MIN_FREE] = 3 * self.n + 16
         # N bodies may legitimately meet at one instant (a row of balls landing together).
         self.Q[L.STORM_CAP] = STORM_LIMIT + STORM_PER_BODY * self.n
@@ -107,14 +99,10 @@ class EngineState:
         if self.n == self.F.shape[0]:
             capacity = 2 * self.F.shape[0]
             F = np.zeros((capacity, L.NF))
-            F[self.n :, L.SLEEP_TRY] = -np.inf
             F[: self.n] = self.F[: self.n]
             I = np.zeros((capacity, L.NI), dtype=np.int64)
             I[: self.n] = self.I[: self.n]
             I[self.n :, L.CELL] = -1
-            I[self.n :, L.SUPPORT] = -1
-            I[self.n :, L.RIDER_HEAD] = -1
-            I[self.n :, L.SLEEP_NEXT] = -1
             I[self.n :, L.ISLAND] = -1
             I[self.n :, L.LAST_OTHER] = -1
             self.F, self.I = F, I
@@ -122,10 +110,6 @@ class EngineState:
             pending = np.zeros(4 * capacity + 16, dtype=np.int64)
             pending[: self.pending.shape[0]] = self.pending
             self.pending = pending
-            self.group = np.zeros(4 * capacity + 16, dtype=np.int64)
-            piles = np.zeros(4 * capacity + 16, dtype=np.int64)
-            piles[: self.piles.shape[0]] = self.piles
-            self.piles = piles
         index = self.n
         self.n += 1
         self._update_min_free()

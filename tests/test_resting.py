@@ -1,13 +1,9 @@
-"""Resting, rolling, sleeping and piles under the contact model "islands" (docs/contact.md).
-
-The behaviours that tests/test_rolling.py, tests/test_sleep.py and tests/test_piles.py check of the
-rules model, on the same scenes, with every World made with ``contact="islands"``. The rules'
-statistics (contact changes, pile solves, ...) are replaced by the islands' own: ``asleep``,
-``resting_on``, ``joins``, ``island_steps``, ``sleeps`` and ``wakes``.
+"""Resting, rolling, sleeping and piles (docs/contact.md): closed forms where there are any,
+checked with the islands' own measures, ``asleep``, ``resting_on``, ``joins``, ``island_steps``,
+``sleeps`` and ``wakes``.
 
 Tolerances. Where the contact forces are constant in time (resting, sliding, rolling: docs/contact.md,
-"Exact and integrated") the islands model is exact and the checks are as tight as the rules' (1e-9
-and below). Where a force changes within a step the step spreads the change over it: a skidding ball
+"Exact and integrated") the islands model is exact and the checks are tight (1e-9 and below). Where a force changes within a step the step spreads the change over it: a skidding ball
 that starts to roll inside a step stops slipping at that step's end, not at the instant of the hand
 calculation (its centre moves by ``mu g tau (h - tau) / 2 <= mu g h^2 / 8`` more, for a change at
 ``tau`` into a step of length ``h``), and over a step a pile's energy may rise by the step's
@@ -25,25 +21,22 @@ from hypothesis import strategies as st
 from pge import World
 from pge.core.tuning import ISLAND_STEP, SLEEP_TIME
 from pge.events import Collision
-from test_piles import horizontal_momentum, ice_world, mechanical_energy
-from test_rolling import RADIUS
-from test_sleep import LENGTH, THICKNESS, energy, threshold
+from contact_scenes import CLOSE, LENGTH, RADIUS, THICKNESS, G, bodies_energy, horizontal_momentum, ice_world, threshold
+from contact_scenes import energy as mechanical_energy
 
-G = 9.81
-CLOSE = 1e-9
 H = ISLAND_STEP
 
 
 def _floor_world(floor_friction=0.0):
-    """test_rolling's floor: gravity (0, -G), elasticity 0.5, a wide fixed floor whose top face is y = 0."""
-    world = World(gravity=(0.0, -G), elasticity=0.5, bounds=(-4.0, -1.0, 8.0, 3.0), contact="islands")
+    """A floor for rolling: gravity (0, -G), elasticity 0.5, a wide fixed floor whose top face is y = 0."""
+    world = World(gravity=(0.0, -G), elasticity=0.5, bounds=(-4.0, -1.0, 8.0, 3.0))
     floor = world.add_box(-4.0, -0.25, 12.0, 0.25, fixed=True, friction=floor_friction, name="floor")
     return world, floor
 
 
 def _ice_world():
-    """test_piles' frictionless floor (top y = 0), elasticity 0, islands."""
-    return ice_world(contact="islands")
+    """A frictionless floor (top y = 0), elasticity 0."""
+    return ice_world()
 
 
 # ------------------------------------------------------------------ rolling on the floor
@@ -136,10 +129,10 @@ def test_without_friction_the_spin_plays_no_part():
 
 
 def _ramp_with_ball(angle_deg, mu):
-    """test_rolling's ramp (friction 0) rising to the right and a ball (friction ``mu``) at rest
+    """A ramp (friction 0) rising to the right and a ball (friction ``mu``) at rest
     touching it halfway up, pressed in by 1e-12. Returns (world, ball, ramp, unit tangent up)."""
     a = math.radians(angle_deg)
-    world = World(gravity=(0.0, -G), elasticity=0.5, bounds=(-1.0, -1.0, 5.0, 5.0), contact="islands")
+    world = World(gravity=(0.0, -G), elasticity=0.5, bounds=(-1.0, -1.0, 5.0, 5.0))
     length = 4.0
     ramp = world.add_polygon(
         [(0.0, 0.0), (length * math.cos(a), 0.0), (length * math.cos(a), length * math.sin(a))],
@@ -224,7 +217,7 @@ def test_ball_rolls_off_the_end_of_a_shelf_and_falls_spinning():
 
 
 def test_a_ball_on_a_box_pushed_along_ice_rolls_and_the_pair_moves_as_the_hand_calculation_says():
-    """Islands roll a ball on a support that moves too (the rules carried it like a point): with the
+    """Islands roll a ball on a support that moves too (the former resting-contact rules carried it like a point): with the
     box (M, own acceleration a0) on ice and the ball (m) rolling on it, the box accelerates at
     A = M a0 / (M + m / 3), the ball at A / 3, its spin at 2 A / (3 R) (it rolls back on the box), with no slip at the contact
     (exact: constant forces)."""
@@ -253,7 +246,7 @@ def test_a_ball_dropped_on_a_box_sliding_on_ice_keeps_the_momentum_and_ends_roll
     """Only friction between the ball and the box acts horizontally: their horizontal momentum never
     changes and the energy never rises at any collision; the ball stays on the box (it would roll off
     its back with no spin) and ends rolling on it with no slip."""
-    world = World(gravity=(0.0, -G), elasticity=0.3, bounds=(-2.0, -1.0, 8.0, 3.0), contact="islands")
+    world = World(gravity=(0.0, -G), elasticity=0.3, bounds=(-2.0, -1.0, 8.0, 3.0))
     floor = world.add_box(-2.0, -0.25, 10.0, 0.25, fixed=True, friction=0.0, name="floor")
     box = world.add_box(0.0, 0.0, 2.0, 0.125, mass=2.0, velocity=(1.5, 0.0), friction=0.0, name="box")
     ball = world.add_circle((1.8, 0.2), RADIUS, mass=1.0, angular_velocity=-2.0 / RADIUS, friction=0.05, name="ball")
@@ -279,9 +272,9 @@ def test_a_ball_dropped_on_a_box_sliding_on_ice_keeps_the_momentum_and_ends_roll
 
 
 def _ladder(theta_deg, mu_floor, drop=1e-3):
-    """test_sleep's plank leaning on a frictionless wall from ``drop`` above the floor (friction
-    ``mu_floor``), nudged into a slow turn; islands."""
-    world = World(gravity=(0.0, -G), elasticity=0.5, contact="islands")
+    """A plank leaning on a frictionless wall from ``drop`` above the floor (friction
+    ``mu_floor``), nudged into a slow turn."""
+    world = World(gravity=(0.0, -G), elasticity=0.5)
     theta = math.radians(theta_deg)
     ux, uy = math.cos(theta), math.sin(theta)
     vx, vy = -math.sin(theta), math.cos(theta)
@@ -305,7 +298,7 @@ ASLEEP_BY = 1.0  # the ladder is still by about 0.49 s and sleeps SLEEP_TIME (0.
 def test_a_ladder_that_friction_holds_falls_asleep_and_makes_no_more_events(margin):
     world, plank, floor, wall = _ladder(45, threshold(45) + margin)
     start = plank.position
-    before = energy(world, [plank])
+    before = bodies_energy([plank])
     world.run_until(ASLEEP_BY)
     assert plank.asleep and world.stats["sleeps"] >= 1 and world.stats["joins"] >= 1
     assert plank.resting_on in (floor, wall)
@@ -316,20 +309,20 @@ def test_a_ladder_that_friction_holds_falls_asleep_and_makes_no_more_events(marg
     assert world.stats["island_steps"] == steps
     assert plank.asleep and plank.velocity == (0.0, 0.0) and plank.angular_velocity == 0.0
     assert math.dist(plank.position, start) < 2e-3
-    assert energy(world, [plank]) <= before
+    assert bodies_energy([plank]) <= before
     assert world.overlaps(1e-9) == []
 
 
 @pytest.mark.parametrize("margin", [-0.02, -0.05, -0.2])
 def test_a_ladder_that_friction_cannot_hold_slides_down(margin):
     world, plank, _, _ = _ladder(45, threshold(45) + margin)
-    before = energy(world, [plank])
+    before = bodies_energy([plank])
     world.run_until(0.05)
     assert not plank.asleep
     world.run_until(3.0)
     assert abs(abs(plank.angle) - math.pi / 4) < 1e-3
     assert plank.position[1] < THICKNESS
-    assert energy(world, [plank]) < before
+    assert bodies_energy([plank]) < before
     assert world.overlaps(1e-9) == []
 
 
@@ -501,11 +494,11 @@ def test_a_box_dropped_on_a_box_sliding_on_ice_keeps_the_horizontal_momentum(spe
 
 
 @pytest.mark.parametrize("seed, count", [(109, 10), (178, 10), (766, 6), (616, 6), (489, 12), (3325, 5)])
-def test_surveyed_piles_that_stormed_under_the_rules_run_on_under_islands(seed, count):
-    """test_piles' surveyed scenes run to their end without a storm; between collisions the energy
+def test_surveyed_piles_that_stormed_run_on(seed, count):
+    """Surveyed piles that stormed under the former resting-contact rules run to their end; between collisions the energy
     rises at most by the steps' integration error, 2e-7 of the scene's scale (measured at most 5e-10)."""
     from test_rotation import guarded, run_energy_scene
 
-    result = guarded(run_energy_scene, seed, count, True, "islands")
+    result = guarded(run_energy_scene, seed, count, True)
     assert result["worst"] <= 2e-7
     assert result["collisions"] > 50
