@@ -19,28 +19,28 @@ Two game scenes, each timed after a warm-up (kernels compiled and loaded before 
   under gravity (0, -9.81), friction 0.5, elasticity 0.5, for ``--duration`` simulated seconds
   (default 10). Placement is ``pge.scenes.disc_gas`` (area fraction 0.2, speed 1, seeded); every
   other disc is replaced by a regular polygon of 3 to 6 sides inscribed in it, and every body
-  starts with a random spin of up to ``--spin`` rad/s (default 10). It runs once with each
-  contact model, ``World(contact="rules")`` (the default) and ``World(contact="islands")``, in a
-  forked child, in steps of ``--step`` simulated seconds (default 0.1; a step that takes over 10 s
-  of wall time makes the next ones four times shorter, so a crawling run reports its progress
-  finely), after kernels warmed up in the parent. The child stops after
-  the step that takes it past ``--wall-limit`` wall seconds (default 240), and the parent kills
-  it if one step runs ``--grace`` seconds past that (a step that never ends); either way the
-  row reports how far the run got. An exception (an ``EventStormError``, say) ends the run and
-  its text goes into the table and the CSV. Reported: simulated time reached, events,
-  collisions, island steps (the islands model's contact solves, which are timers, not events),
-  events per second (wall and CPU), CPU microseconds per event, and the deepest
-  overlap between two bodies at the end and at the 1 s marks along the way (sampled outside
-  the timing).
+  starts with a random spin of up to ``--spin`` rad/s (default 10). It runs once, with the
+  World's defaults otherwise, in a forked child, in steps of ``--step`` simulated seconds
+  (default 0.1; a step that takes over 10 s of wall time makes the next ones four times
+  shorter, so a crawling run reports its progress finely), after kernels warmed up in the
+  parent. The child stops after the step that takes it past ``--wall-limit`` wall seconds
+  (default 240), and the parent kills it if one step runs ``--grace`` seconds past that (a
+  step that never ends); either way the row reports how far the run got. An exception (an
+  ``EventStormError``, say) ends the run and its text goes into the table and the CSV.
+  Reported: simulated time reached, events, collisions, island steps (the islands' contact
+  solves, which are timers, not events), sleeps and joins (bodies falling asleep, and bodies
+  joining an island), events per second (wall and CPU), CPU microseconds per event, and the
+  deepest overlap between two bodies at the end and at the 1 s marks along the way (sampled
+  outside the timing).
 
 Usage (from the repository root, with pge installed in .venv):
 
-    .venv/bin/python benchmarks/games.py                    # about 10 minutes
+    .venv/bin/python benchmarks/games.py                    # about 5 minutes
     .venv/bin/python benchmarks/games.py --quick            # small sizes, under a minute once compiled
     .venv/bin/python benchmarks/games.py --only manygrav
 
 Prints a table per scene and writes ``benchmarks/results/games-<hostname>.csv`` (one row per
-run: the manygrav variants and the two spinning-box runs). Timings are reported, never asserted.
+run: the manygrav variants and the spinning-box run). Timings are reported, never asserted.
 CPU seconds (``time.process_time``) are given next to wall seconds, and the load average at the
 start of each run, because the machine may be shared.
 """
@@ -164,7 +164,7 @@ def run_manygrav(args) -> list[dict]:
         last = runs[-1]
         best, median = min(walls), statistics.median(walls)
         rows.append({
-            "scene": "manygrav", "variant": variant, "contact": "rules", "bodies": BALLS_X * BALLS_Y + 4,
+            "scene": "manygrav", "variant": variant, "bodies": BALLS_X * BALLS_Y + 4,
             "duration_s": duration, "load_start": load, "repeats": args.repeat,
             "wall_best_s": best, "wall_median_s": median, "cpu_best_s": min(cpus), "cpu_median_s": statistics.median(cpus),
             "events": last["events"], "collisions": last["collisions"], "deterministic": "yes" if len(counts) == 1 else "no",
@@ -199,14 +199,14 @@ MANYGRAV_COLUMNS = [
 # ------------------------------------------------------------------------- spinning box
 
 
-def spinning_box(n: int, spin: float, seed: int, contact: str):
+def spinning_box(n: int, spin: float, seed: int):
     """``n`` bodies, every other one a regular polygon, spinning, under gravity with friction."""
     from pge import World
     from pge.scenes import disc_gas
 
     gas = disc_gas(n, area_fraction=0.2, speed=1.0, seed=seed, box=(0.0, 0.0, 1.0, 1.0))
     rng = random.Random(seed + 1)
-    world = World(gravity=(0.0, -9.81), elasticity=0.5, contact=contact, bounds=(-0.05, -0.05, 1.05, 1.05))
+    world = World(gravity=(0.0, -9.81), elasticity=0.5, bounds=(-0.05, -0.05, 1.05, 1.05))
     t = 0.05
     for x, y, w, h in ((-t, -t, 1 + 2 * t, t), (-t, 1.0, 1 + 2 * t, t), (-t, 0.0, t, 1.0), (1.0, 0.0, t, 1.0)):
         world.add_box(x, y, w, h, fixed=True, friction=0.5)
@@ -229,10 +229,10 @@ def deepest_overlap(world) -> float:
     return max((depth for _, _, depth in world.overlaps()), default=0.0)
 
 
-def spinning_child(connection, n, spin, seed, contact, duration, step, wall_limit) -> None:
+def spinning_child(connection, n, spin, seed, duration, step, wall_limit) -> None:
     """Run one spinning box in steps, sending a progress record after each; the last says why it ended."""
     try:
-        world, radius = spinning_box(n, spin, seed, contact)
+        world, radius = spinning_box(n, spin, seed)
         world.run_until(0.0)
         wall = cpu = 0.0
         deepest = 0.0
@@ -259,7 +259,8 @@ def spinning_child(connection, n, spin, seed, contact, duration, step, wall_limi
                 deepest = max(deepest, deepest_overlap(world))
             record.update(reached_s=world.time, events=stats["events"], collisions=stats["collisions"],
                           island_steps=stats.get("island_steps", 0), timers=stats["timers"],
-                          rests=stats["rests"], wall_s=wall, cpu_s=cpu, max_overlap_during=deepest, error=error)
+                          sleeps=stats["sleeps"], joins=stats["joins"], wall_s=wall, cpu_s=cpu,
+                          max_overlap_during=deepest, error=error)
             if error:
                 break
         record["max_overlap_end"] = deepest_overlap(world)
@@ -273,77 +274,80 @@ def spinning_child(connection, n, spin, seed, contact, duration, step, wall_limi
 
 
 def run_spinning(args) -> list[dict]:
+    """Run the spinning box once in a forked child, watched against the wall-clock limit;
+    returns its one row."""
     context = multiprocessing.get_context("fork")
-    for contact in ("rules", "islands"):  # warm-up in this process, so the children inherit the kernels
-        world, _ = spinning_box(40, args.spin, args.seed, contact)
-        world.run_until(0.3)
-    rows = []
-    for contact in ("rules", "islands"):
-        load = loadavg()
-        parent, child = context.Pipe(duplex=False)
-        process = context.Process(target=spinning_child, args=(
-            child, args.bodies, args.spin, args.seed, contact, args.duration, args.step, args.wall_limit))
-        start = time.perf_counter()
-        process.start()
-        child.close()
-        last: dict = {}
-        killed = False
-        while True:
-            left = args.wall_limit + args.grace - (time.perf_counter() - start)
-            if left <= 0:
-                killed = True
+    # Warm-up in this process, so that the child inherits the kernels.
+    world, _ = spinning_box(40, args.spin, args.seed)
+    world.run_until(0.3)
+    load = loadavg()
+    parent, child = context.Pipe(duplex=False)
+    process = context.Process(target=spinning_child, args=(
+        child, args.bodies, args.spin, args.seed, args.duration, args.step, args.wall_limit))
+    start = time.perf_counter()
+    process.start()
+    child.close()
+    last: dict = {}
+    killed = False
+    while True:
+        left = args.wall_limit + args.grace - (time.perf_counter() - start)
+        if left <= 0:
+            killed = True
+            break
+        if parent.poll(min(left, 5.0)):
+            try:
+                last = parent.recv()
+            except EOFError:
                 break
-            if parent.poll(min(left, 5.0)):
-                try:
-                    last = parent.recv()
-                except EOFError:
-                    break
-                if last.get("done"):
-                    break
-            elif not process.is_alive():
+            if last.get("done"):
                 break
-        if killed:
-            process.kill()
-        process.join()
-        error = last.get("error", "")
-        if killed:
-            error = (error + "; " if error else "") + (
-                f"killed at {args.wall_limit + args.grace:g} s wall, in the step from t = {last.get('reached_s', 0.0):.6g} "
-                f"to {last.get('next_target', math.nan):.6g} s")
-        elif not last.get("done") and not error:
-            error = f"child ended without a result (exit code {process.exitcode})"
-        reached = last.get("reached_s", 0.0)
-        events = last.get("events", 0)
-        wall, cpu = last.get("wall_s", 0.0), last.get("cpu_s", 0.0)
-        finished = reached >= args.duration and not error
-        if not finished and not error:
-            error = f"stopped at the wall-clock limit ({args.wall_limit:g} s)"
-        radius = last.get("radius", math.nan)
-        rows.append({
-            "scene": "spinning box", "variant": "World", "contact": contact, "bodies": args.bodies + 4,
-            "duration_s": args.duration, "load_start": load, "repeats": 1,
-            "reached_s": reached, "finished": "yes" if finished else "no", "events": events, "collisions": last.get("collisions", 0),
-            "island_steps": last.get("island_steps"), "timers": last.get("timers"), "rests": last.get("rests"),
-            "wall_best_s": wall, "cpu_best_s": cpu,
-            "events_per_s_wall": events / wall if wall else None, "events_per_s_cpu": events / cpu if cpu else None,
-            "us_per_event": 1e6 * cpu / events if events else None,
-            "max_overlap_end": last.get("max_overlap_end"), "max_overlap_during": last.get("max_overlap_during"),
-            "overlap_end_over_radius": (last.get("max_overlap_end") or 0.0) / radius if last.get("max_overlap_end") is not None else None,
-            "radius": radius, "error": error,
-        })
-        print(f"  {contact}: reached {reached:g} s, {events:,} events, {wall:.1f} s wall {cpu:.1f} s cpu"
-              + (f"; {error}" if error else ""), flush=True)
-    return rows
+        elif not process.is_alive():
+            break
+    if killed:
+        process.kill()
+    process.join()
+    error = last.get("error", "")
+    if killed:
+        error = (error + "; " if error else "") + (
+            f"killed at {args.wall_limit + args.grace:g} s wall, in the step from t = {last.get('reached_s', 0.0):.6g} "
+            f"to {last.get('next_target', math.nan):.6g} s")
+    elif not last.get("done") and not error:
+        error = f"child ended without a result (exit code {process.exitcode})"
+    reached = last.get("reached_s", 0.0)
+    events = last.get("events", 0)
+    wall, cpu = last.get("wall_s", 0.0), last.get("cpu_s", 0.0)
+    finished = reached >= args.duration and not error
+    if not finished and not error:
+        error = f"stopped at the wall-clock limit ({args.wall_limit:g} s)"
+    radius = last.get("radius", math.nan)
+    row = {
+        "scene": "spinning box", "variant": "World", "bodies": args.bodies + 4,
+        "duration_s": args.duration, "load_start": load, "repeats": 1,
+        "reached_s": reached, "finished": "yes" if finished else "no", "events": events, "collisions": last.get("collisions", 0),
+        "island_steps": last.get("island_steps"), "timers": last.get("timers"),
+        "sleeps": last.get("sleeps"), "joins": last.get("joins"),
+        "wall_best_s": wall, "cpu_best_s": cpu,
+        "events_per_s_wall": events / wall if wall else None, "events_per_s_cpu": events / cpu if cpu else None,
+        "us_per_event": 1e6 * cpu / events if events else None,
+        "max_overlap_end": last.get("max_overlap_end"), "max_overlap_during": last.get("max_overlap_during"),
+        "overlap_end_over_radius": (last.get("max_overlap_end") or 0.0) / radius if last.get("max_overlap_end") is not None else None,
+        "radius": radius, "error": error,
+    }
+    print(f"  reached {reached:g} s, {events:,} events, {wall:.1f} s wall {cpu:.1f} s cpu"
+          + (f"; {error}" if error else ""), flush=True)
+    return [row]
 
 
 SPINNING_COLUMNS = [
-    ("contact", "contact", "s"),
+    ("bodies", "bodies", "d"),
     ("load", "load_start", ".2f"),
     ("reached s", "reached_s", ".2f"),
     ("finished", "finished", "s"),
     ("events", "events", "d"),
     ("collisions", "collisions", "d"),
     ("island steps", "island_steps", "d"),
+    ("sleeps", "sleeps", "d"),
+    ("joins", "joins", "d"),
     ("wall s", "wall_best_s", ".1f"),
     ("cpu s", "cpu_best_s", ".1f"),
     ("events/s wall", "events_per_s_wall", ",.0f"),
@@ -355,8 +359,9 @@ SPINNING_COLUMNS = [
 ]
 
 CSV_COLUMNS = [
-    "date", "commit", "host", "scene", "variant", "contact", "bodies", "duration_s", "load_start", "repeats",
-    "reached_s", "finished", "events", "collisions", "island_steps", "timers", "rests", "wall_best_s", "wall_median_s", "cpu_best_s", "cpu_median_s",
+    "date", "commit", "host", "scene", "variant", "bodies", "duration_s", "load_start", "repeats",
+    "reached_s", "finished", "events", "collisions", "island_steps", "timers", "sleeps", "joins",
+    "wall_best_s", "wall_median_s", "cpu_best_s", "cpu_median_s",
     "events_per_s_wall", "events_per_s_cpu", "us_per_event", "deterministic", "original_s", "ratio_best",
     "ratio_median", "max_overlap_end", "max_overlap_during", "radius", "overlap_end_over_radius", "error",
 ]
@@ -379,7 +384,7 @@ def main(argv=None) -> int:
     parser.add_argument("--duration", type=float, default=10.0, help="spinning box: simulated s (default 10)")
     parser.add_argument("--spin", type=float, default=10.0, help="spinning box: largest spin, rad/s (default 10)")
     parser.add_argument("--step", type=float, default=0.1, help="spinning box: simulated s per step (default 0.1)")
-    parser.add_argument("--wall-limit", type=float, default=240.0, help="spinning box: wall s per model (default 240)")
+    parser.add_argument("--wall-limit", type=float, default=240.0, help="spinning box: wall s (default 240)")
     parser.add_argument("--grace", type=float, default=60.0, help="wall s past the limit before a step is killed")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--quick", action="store_true",
@@ -402,12 +407,12 @@ def main(argv=None) -> int:
     if args.only in (None, "spinning"):
         print(f"spinning box: {args.bodies} bodies (half regular polygons of 3-6 sides), spin up to "
               f"{args.spin:g} rad/s, gravity, friction 0.5, elasticity 0.5, {args.duration:g} simulated s, "
-              f"steps of {args.step:g} s, wall limit {args.wall_limit:g} s per model", flush=True)
+              f"steps of {args.step:g} s, wall limit {args.wall_limit:g} s", flush=True)
         found = run_spinning(args)
         print(table(found, SPINNING_COLUMNS), flush=True)
         for row in found:
             if row["error"]:
-                print(f"  {row['contact']}: {row['error']}")
+                print(f"  {row['error']}")
         rows += found
     for row in rows:
         row.update(stamp)

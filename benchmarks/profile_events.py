@@ -28,7 +28,7 @@ Options for external profilers:
 
 Micro-benchmarks (after the run):
 
-* ``--calls``: a compiled call that takes the state tuple ``S`` (21 arrays) against the same call
+* ``--calls``: a compiled call that takes the state tuple ``S`` (19 arrays) against the same call
   taking the three arrays it uses, and against the work inlined, in a compiled loop;
 * ``--heap``: the engine's own ``push`` / ``pop_earliest`` on a copy of the run's queue.
 """
@@ -199,7 +199,7 @@ def time_calls(repeats: int = 5, n: int = 2_000_000) -> None:
     S = EngineState().S
     print(f"compiled call cost, {n:,} calls in a compiled loop, best of {repeats}:")
     for label, loop, callee in (
-        ("callee takes S (21 arrays)", loop_tuple, work_tuple),
+        (f"callee takes S ({len(S)} arrays)", loop_tuple, work_tuple),
         ("callee takes F, I, Q", loop_arrays, work_arrays),
         ("no call (work inlined)", loop_inline, None),
     ):

@@ -1,9 +1,8 @@
-"""Contact sheets of the example scenes under both contact models (issue 19: "look at their pictures").
+"""Contact sheets of the example scenes (issue 19: "look at their pictures").
 
-For each scene and each contact model ("rules", the default, and "islands") this runs the
-scene and writes one PNG, ``docs/pictures/<scene>-<model>.png``: a grid of frames of the world
-(``World.picture``) at evenly spaced times, each labelled with its time and the model, and
-with the number of overlapping pairs when there are any.
+For each scene this runs it and writes one PNG, ``docs/pictures/<scene>.png``: a grid of
+frames of the world (``World.picture``) at evenly spaced times, each labelled with its time,
+and with the number of overlapping pairs when there are any.
 
 Scenes: ``toppling`` and ``matchsticks`` (the scenes of examples/toppling.py and
 examples/matchsticks.py, rebuilt here with the World API so that pygame is not needed),
@@ -12,14 +11,14 @@ examples/matchsticks.py, rebuilt here with the World API so that pygame is not n
 ``dominoes`` (a flicked row of 6): these four as tests/test_islands.py builds them; and
 ``ledge-pushed`` (a box sliding over the ledge's edge, which should tip and fall too).
 
-Each scene and model runs in its own subprocess, which saves its frames as it goes; a run
-that takes longer than ``--limit`` seconds of wall time (default 120, counted from when the
-world is built, after imports and a warm-up) is stopped and its sheet says so. A first warm-up process
+Each scene runs in its own subprocess, which saves its frames as it goes; a run that takes
+longer than ``--limit`` seconds of wall time (default 120, counted from when the world is
+built, after imports and a warm-up) is stopped and its sheet says so. A first warm-up process
 compiles the Numba kernels (2-3 minutes on a cold cache) so that the limit measures the
 physics only.
 
     NUMBA_CACHE_DIR=/tmp/nc .venv/bin/python tools/pictures.py                 # everything
-    .venv/bin/python tools/pictures.py --scenes stack ledge --models islands   # some
+    .venv/bin/python tools/pictures.py --scenes stack ledge                    # some
     .venv/bin/python tools/pictures.py --frames 12 --log /tmp/pictures.jsonl   # + numbers
 
 Each sheet's title gives the commit (and whether src/ had uncommitted changes), the run's
@@ -41,7 +40,6 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-MODELS = ("rules", "islands")
 G = 9.81
 #: pixels on the longer side of one frame of a sheet.
 TILE = 300
@@ -57,12 +55,12 @@ def rgb(r: float, g: float, b: float) -> tuple[int, int, int]:
 # ---------------------------------------------------------------------- scenes
 
 
-def toppling(contact: str):
+def toppling():
     """examples/toppling.py: a ball knocks over a tall block; a tilted crate, a spinning plank
     and a spinning wedge drop onto the floor of a walled unit square."""
     from pge import World
 
-    world = World(gravity=(0.0, -G), elasticity=0.5, allow_overlap=True, contact=contact)
+    world = World(gravity=(0.0, -G), elasticity=0.5, allow_overlap=True)
     wood = rgb(0.55, 0.35, 0.2)
     world.add_box(0.0, 0.0, 1.0, 0.05, fixed=True, friction=0.5, data={"colour": wood}, name="floor")
     world.add_box(0.0, 0.05, 0.02, 0.95, fixed=True, data={"colour": wood})
@@ -70,22 +68,22 @@ def toppling(contact: str):
     world.add_box(0.3, 0.05, 0.04, 0.2, mass=0.2, friction=0.5, data={"colour": rgb(0.85, 0.25, 0.2)}, name="block")
     world.add_circle((0.08, 0.22), 0.03, mass=0.3, velocity=(1.5, 0.0), friction=0.2,
                      data={"colour": rgb(0.95, 0.8, 0.2)}, name="ball")
-    world.add_box(0.45, 0.45, 0.1, 0.1, mass=0.5, friction=0.5, angle=0.5, data={"colour": rgb(0.3, 0.55, 0.9)},
+    world.add_box(0.6, 0.45, 0.1, 0.1, mass=0.5, friction=0.5, angle=0.5, data={"colour": rgb(0.3, 0.55, 0.9)},
                   name="crate")
-    world.add_box(0.62, 0.67, 0.12, 0.06, mass=0.5, friction=0.5, angle=-0.9, angular_velocity=3.0,
+    world.add_box(0.76, 0.67, 0.12, 0.06, mass=0.5, friction=0.5, angle=-0.9, angular_velocity=3.0,
                   data={"colour": rgb(0.3, 0.7, 0.4)}, name="plank")
     world.add_polygon([(0.84, 0.85), (0.94, 0.85), (0.89, 0.93)], mass=0.2, friction=0.5, angular_velocity=-6.0,
                       data={"colour": rgb(0.6, 0.3, 0.8)}, name="wedge")
     return world
 
 
-def matchsticks(contact: str):
+def matchsticks():
     """examples/matchsticks.py: four matchboxes of fixed sticks, each with a blue ball inside;
     three thrown balls knock out every stick they hit; a freed blue ball reaching the floor is
     collected (removed). Every elasticity is 1. (The example's countdown text is left out.)"""
     from pge import World
 
-    world = World(gravity=(0.0, -G), elasticity=1.0, allow_overlap=True, contact=contact)
+    world = World(gravity=(0.0, -G), elasticity=1.0, allow_overlap=True)
     wall, stick = 0.01, 0.01
     wood, match, blue = rgb(0.55, 0.35, 0.2), rgb(0.9, 0.75, 0.45), rgb(0.2, 0.35, 0.9)
     sticks, trapped = set(), set()
@@ -131,21 +129,21 @@ def matchsticks(contact: str):
     return world
 
 
-def _floor_world(contact: str):
+def _floor_world():
     """tests/test_islands.py's floor: a fixed slab whose top face is y = 0."""
     from pge import World
 
-    world = World(gravity=(0.0, -G), contact=contact, bounds=(-2.0, -1.0, 2.0, 3.0))
+    world = World(gravity=(0.0, -G), bounds=(-2.0, -1.0, 2.0, 3.0))
     world.add_box(-2.0, -1.0, 4.0, 1.0, fixed=True)
     return world
 
 
-def stack(contact: str, seed: int = 0):
+def stack(seed: int = 0):
     """10 boxes 0.2 x 0.2 dropped with 1 cm gaps and sideways offsets drawn from +-0.005
     (test_a_stack_of_10_boxes_dropped_with_gaps_and_offsets_settles_and_then_makes_no_events)."""
     import numpy as np
 
-    world = _floor_world(contact)
+    world = _floor_world()
     rng = np.random.default_rng(seed)
     for k in range(10):
         world.add_box(-0.1 + rng.uniform(-0.005, 0.005), k * 0.21 + 0.01, 0.2, 0.2, mass=1.0, friction=0.5,
@@ -153,10 +151,10 @@ def stack(contact: str, seed: int = 0):
     return world
 
 
-def pyramid(contact: str, rows: int = 5):
+def pyramid(rows: int = 5):
     """A pyramid of 15 boxes, each 2 mm narrower than its 0.2 pitch and 0.5 mm above the row
     under it (test_a_pyramid_of_15_boxes_stands_and_then_makes_no_events)."""
-    world = _floor_world(contact)
+    world = _floor_world()
     for r in range(rows):
         for c in range(rows - r):
             x = -rows * 0.1 + r * 0.1 + c * 0.2
@@ -164,37 +162,37 @@ def pyramid(contact: str, rows: int = 5):
     return world
 
 
-def ledge(contact: str, d: float = 0.02):
+def ledge(d: float = 0.02):
     """A 0.2 box at rest on a ledge (top y = 0, edge x = 0) with its centroid ``d`` past the
     edge; a floor 1.8 below (test_a_box_past_a_ledge_tips_over_its_edge_as_the_pivot_ode_says).
     It should pivot about the edge, slip off at about 0.31 s and fall to the floor."""
     from pge import World
 
-    world = World(gravity=(0.0, -G), contact=contact, bounds=(-2.0, -2.0, 2.0, 2.0))
+    world = World(gravity=(0.0, -G), bounds=(-2.0, -2.0, 2.0, 2.0))
     world.add_box(-2.0, -1.0, 2.0, 1.0, fixed=True)
     world.add_box(-2.0, -2.0, 4.0, 0.2, fixed=True)
     world.add_box(d - 0.1, 0.0, 0.2, 0.2, mass=1.0, friction=1.0, elasticity=0.0)
     return world
 
 
-def ledge_pushed(contact: str):
+def ledge_pushed():
     """The same ledge, with the box pushed over it: it starts wholly on the ledge (centroid
     5 cm before the edge) sliding at 0.5 m/s with friction 0.1, so that friction alone would
     stop it with its centroid 7.7 cm past the edge. It should tip over the edge and fall once
     its centroid passes the edge (at about 0.1 s)."""
     from pge import World
 
-    world = World(gravity=(0.0, -G), contact=contact, bounds=(-2.0, -2.0, 2.0, 2.0))
+    world = World(gravity=(0.0, -G), bounds=(-2.0, -2.0, 2.0, 2.0))
     world.add_box(-2.0, -1.0, 2.0, 1.0, fixed=True)
     world.add_box(-2.0, -2.0, 4.0, 0.2, fixed=True)
     world.add_box(-0.15, 0.0, 0.2, 0.2, mass=1.0, friction=0.1, elasticity=0.0, velocity=(0.5, 0.0))
     return world
 
 
-def dominoes(contact: str, count: int = 6):
+def dominoes(count: int = 6):
     """A row of 6 dominoes 0.02 x 0.2, 0.1 apart; the first is flicked towards the others
     (angular velocity -8 rad/s) (test_dominoes_topple_in_order)."""
-    world = _floor_world(contact)
+    world = _floor_world()
     row = [world.add_box(-0.5 + 0.1 * k, 0.0, 0.02, 0.2, mass=0.1, friction=0.5, elasticity=0.0)
            for k in range(count)]
     row[0].angular_velocity = -8.0
@@ -227,8 +225,8 @@ def _body_states(world) -> list:
     return states
 
 
-def work(scene: str, model: str, frames: int, folder: Path, duration: float) -> None:
-    """Run one scene under one model (in a subprocess): save frame k as ``folder/frame-k.png``
+def work(scene: str, frames: int, folder: Path, duration: float) -> None:
+    """Run one scene (in a subprocess): save frame k as ``folder/frame-k.png``
     and its numbers as a line of ``folder/frames.jsonl``, and write ``folder/started`` once the
     world is built (the parent's wall-time limit counts from then)."""
     import warnings
@@ -236,10 +234,10 @@ def work(scene: str, model: str, frames: int, folder: Path, duration: float) -> 
     warnings.simplefilter("ignore")  # OverlapWarning, LeftWorldWarning: the pictures show them
     builder, _, region, _ = SCENES[scene]
     try:
-        _warm(model)
+        _warm()
     except Exception:  # the scene itself will show what is wrong
         pass
-    world = builder(model)
+    world = builder()
     start = time.perf_counter()
     (folder / "started").write_text(str(time.time()))
     with open(folder / "frames.jsonl", "a") as log:
@@ -271,16 +269,16 @@ def work(scene: str, model: str, frames: int, folder: Path, duration: float) -> 
             log.flush()
 
 
-def _warm(model: str) -> None:
-    """Compile (or load from Numba's cache) the kernels a run under ``model`` needs, on a small
-    scene of every kind of contact (box on floor, ball into a box, a tumbling triangle, a
-    removal), so that a run's wall time measures its physics and not the compiler."""
+def _warm() -> None:
+    """Compile (or load from Numba's cache) the kernels a run needs, on a small scene of every
+    kind of contact (box on floor, ball into a box, a tumbling triangle, a removal), so that a
+    run's wall time measures its physics and not the compiler."""
     import warnings
 
     from pge import World
 
     warnings.simplefilter("ignore")
-    world = World(gravity=(0.0, -G), contact=model, bounds=(-1.0, -1.0, 1.0, 1.0), elasticity=0.5)
+    world = World(gravity=(0.0, -G), bounds=(-1.0, -1.0, 1.0, 1.0), elasticity=0.5)
     world.add_box(-1.0, -1.0, 2.0, 0.5, fixed=True)
     world.add_box(0.0, -0.5, 0.05, 0.2, mass=0.2, friction=0.5)
     world.add_circle((-0.3, -0.4), 0.03, mass=0.3, velocity=(1.5, 0.0), friction=0.2)
@@ -296,25 +294,24 @@ def _warm(model: str) -> None:
 
 
 def warm_up() -> None:
-    """Compile the kernels of both models (errors are printed, not raised)."""
-    for model in MODELS:
-        try:
-            _warm(model)
-        except Exception as error:
-            print(f"warm-up {model}: {type(error).__name__}: {error}", file=sys.stderr)
+    """Compile the kernels (errors are printed, not raised)."""
+    try:
+        _warm()
+    except Exception as error:
+        print(f"warm-up: {type(error).__name__}: {error}", file=sys.stderr)
 
 
 # ---------------------------------------------------------------------- the parent
 
 
-def run_one(scene: str, model: str, frames: int, limit: float, duration: float) -> dict:
-    """Run ``scene`` under ``model`` in a subprocess, stopping it after ``limit`` wall seconds
+def run_one(scene: str, frames: int, limit: float, duration: float) -> dict:
+    """Run ``scene`` in a subprocess, stopping it after ``limit`` wall seconds
     from when its world is built; returns its frames (images and numbers) and how it ended."""
     from PIL import Image
 
-    with tempfile.TemporaryDirectory(prefix=f"pictures-{scene}-{model}-") as name:
+    with tempfile.TemporaryDirectory(prefix=f"pictures-{scene}-") as name:
         folder = Path(name)
-        command = [sys.executable, str(Path(__file__).resolve()), "--worker", scene, model, str(folder),
+        command = [sys.executable, str(Path(__file__).resolve()), "--worker", scene, str(folder),
                    "--frames", str(frames), "--duration", repr(duration)]
         began = time.time()
         process = subprocess.Popen(command, stderr=subprocess.PIPE, text=True)
@@ -343,7 +340,6 @@ def run_one(scene: str, model: str, frames: int, limit: float, duration: float) 
         run_wall = records[-1].get("wall") if records and "wall" in records[-1] else None
     return {
         "scene": scene,
-        "model": model,
         "frames": images,
         "records": records,
         "stopped": stopped,
@@ -382,7 +378,7 @@ def contact_sheet(result: dict, frames: int, limit: float, duration: float, sour
     sheet = Image.new("RGB", (columns * (width + gap) + gap, title + rows * (height + label + gap) + gap),
                       (245, 245, 245))
     draw = ImageDraw.Draw(sheet)
-    ending = f"{result['scene']} - contact=\"{result['model']}\" - {frames} frames, 0 to {duration:g} s"
+    ending = f"{result['scene']} - {frames} frames, 0 to {duration:g} s"
     if result["stopped"]:
         last = result["records"][-1]["t"] if result["records"] else 0.0
         ending += f" - STOPPED after {limit:g} s wall at t = {last:.3g} s"
@@ -393,14 +389,14 @@ def contact_sheet(result: dict, frames: int, limit: float, duration: float, sour
     elif result["run_wall"] is not None:
         ending += f" - {result['run_wall']:.1f} s wall, {result['records'][-1].get('events')} events"
     draw.text((gap, 6), ending, fill=(0, 0, 0))
-    draw.text((gap, 20), f"labels: simulated time, model, overlapping pairs (> 1e-6) if any; {source}",
+    draw.text((gap, 20), f"labels: simulated time, overlapping pairs (> 1e-6) if any; {source}",
               fill=(90, 90, 90))
     for n, (record, image) in enumerate(result["frames"]):
         row, column = divmod(n, columns)
         left = gap + column * (width + gap)
         top = title + row * (height + label + gap)
         sheet.paste(image.resize((width, height)), (left, top + label))
-        text = f"t = {record['t']:.3f} s  {result['model']}"
+        text = f"t = {record['t']:.3f} s"
         note = ""
         if "error" in record:
             note = record["error"].split(":")[0]
@@ -422,11 +418,10 @@ def contact_sheet(result: dict, frames: int, limit: float, duration: float, sour
 
 
 def main(argv=None) -> int:
-    """Parse the command line; run the worker, or run every scene and model and write the sheets."""
+    """Parse the command line; run the worker, or run every scene and write the sheets."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--scenes", nargs="+", choices=list(SCENES), default=list(SCENES), help="scenes to draw")
-    parser.add_argument("--models", nargs="+", choices=MODELS, default=list(MODELS), help="contact models")
     parser.add_argument("--frames", type=int, default=None,
                         help="frames per sheet (8-12 is readable; default: each scene's own, 10 or 12)")
     parser.add_argument("--duration", type=float, default=None,
@@ -435,7 +430,7 @@ def main(argv=None) -> int:
     parser.add_argument("--out", type=Path, default=ROOT / "docs" / "pictures", help="folder of the sheets")
     parser.add_argument("--log", type=Path, default=None, help="append every frame's numbers (JSON lines) here")
     parser.add_argument("--no-warm-up", action="store_true", help="skip compiling the kernels first")
-    parser.add_argument("--worker", nargs=3, metavar=("SCENE", "MODEL", "FOLDER"), help=argparse.SUPPRESS)
+    parser.add_argument("--worker", nargs=2, metavar=("SCENE", "FOLDER"), help=argparse.SUPPRESS)
     parser.add_argument("--warm-up-only", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.frames is not None and args.frames < 2:
@@ -445,8 +440,8 @@ def main(argv=None) -> int:
         warm_up()
         return 0
     if args.worker:
-        scene, model, folder = args.worker
-        work(scene, model, args.frames or SCENES[scene][3], Path(folder), args.duration or SCENES[scene][1])
+        scene, folder = args.worker
+        work(scene, args.frames or SCENES[scene][3], Path(folder), args.duration or SCENES[scene][1])
         return 0
     if not args.no_warm_up:
         began = time.time()
@@ -456,28 +451,27 @@ def main(argv=None) -> int:
     source = provenance()
     print(f"pictures of {source}", flush=True)
     for scene in args.scenes:
-        for model in args.models:
-            duration = args.duration or SCENES[scene][1]
-            frames = args.frames or SCENES[scene][3]
-            result = run_one(scene, model, frames, args.limit, duration)
-            sheet = contact_sheet(result, frames, args.limit, duration, source)
-            path = args.out / f"{scene}-{model}.png"
-            sheet.save(path)
-            if args.log is not None:
-                with open(args.log, "a") as log:
-                    for record in result["records"]:
-                        log.write(json.dumps({"scene": scene, "model": model, **record}) + "\n")
-            last = result["records"][-1] if result["records"] else {}
-            how = ("STOPPED" if result["stopped"] else last.get("error", "").split(":")[0] or
-                   ("failed" if result["returncode"] else "ok"))
-            run_wall = "-" if result["run_wall"] is None else f"{result['run_wall']:.1f}"
-            if result["stopped"]:
-                run_wall = f">{args.limit:g}"
-            print(f"{scene:13s} {model:8s} {how:10s} run {run_wall:>6s} s wall, process {result['wall']:.1f} s, "
-                  f"t = {last.get('t', 0.0):.3f}, events {last.get('events')}, overlaps {last.get('overlaps')}"
-                  f" -> {path.relative_to(ROOT) if path.is_relative_to(ROOT) else path}", flush=True)
-            for line in result["stderr"]:
-                print(f"    {line}", flush=True)
+        duration = args.duration or SCENES[scene][1]
+        frames = args.frames or SCENES[scene][3]
+        result = run_one(scene, frames, args.limit, duration)
+        sheet = contact_sheet(result, frames, args.limit, duration, source)
+        path = args.out / f"{scene}.png"
+        sheet.save(path)
+        if args.log is not None:
+            with open(args.log, "a") as log:
+                for record in result["records"]:
+                    log.write(json.dumps({"scene": scene, **record}) + "\n")
+        last = result["records"][-1] if result["records"] else {}
+        how = ("STOPPED" if result["stopped"] else last.get("error", "").split(":")[0] or
+               ("failed" if result["returncode"] else "ok"))
+        run_wall = "-" if result["run_wall"] is None else f"{result['run_wall']:.1f}"
+        if result["stopped"]:
+            run_wall = f">{args.limit:g}"
+        print(f"{scene:13s} {how:10s} run {run_wall:>6s} s wall, process {result['wall']:.1f} s, "
+              f"t = {last.get('t', 0.0):.3f}, events {last.get('events')}, overlaps {last.get('overlaps')}"
+              f" -> {path.relative_to(ROOT) if path.is_relative_to(ROOT) else path}", flush=True)
+        for line in result["stderr"]:
+            print(f"    {line}", flush=True)
     return 0
 
 

@@ -4,7 +4,9 @@ claim "energy never increases"): a spinning polygon (5) pressed between the ceil
 shut by the spin (press_rate < 0), the pivot rule sends it off at v_min = sqrt(2 |g| h) instead,
 adding energy (+1.9e-6 J, 2.3e-6 of the total), again at each of the following bounces of
 the run. Presumably the pivot rule (engine._pivot): its docstring allows m |g''| h per event.
-Friction 0..1, elasticities < 1, no gravity."""
+Friction 0..1, elasticities < 1, no gravity. The pivot rule went with the resting-contact rules
+of that time, since removed; kept as a check: it prints every collision that gains energy, none
+now."""
 from pge import World, Collision
 h = float.fromhex
 world = World(gravity=(0.0, 0.0), elasticity=1.0, frame_rate=None)

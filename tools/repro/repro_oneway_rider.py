@@ -8,7 +8,9 @@ top box up and slow the bottom one down, keeping the horizontal momentum (2 kg m
 pushes only vertically) and losing energy. The engine speeds the top box up but does not slow the
 bottom one while the top one rides it, so the momentum and the energy rise until the top box slides
 off its back (2.0 -> 2.41 kg m/s, +0.18 J in 0.08 s). Fixed the same day by solving each pile
-together (pge/core/pile.py): the momentum stays 2.0 and the energy never rises.
+of resting bodies together (the resting-contact rules of that time, since removed). Islands
+solve the two boxes' contacts together too; kept as a check: the momentum stays 2.0 and the
+energy never rises.
 """
 from pge import World
 

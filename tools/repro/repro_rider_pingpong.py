@@ -12,7 +12,8 @@ in ``collide`` made other scenes (seed 206) storm in graze loops.
 
 Fixed 2026-11-23: a support whose velocity changes by no more than the rounding speed of a rider
 (``STILL_ULPS`` of the rider's and the support's speeds) carries the rider instead of releasing
-it (``contact.resettle_riders``). Expected: no storm, t = 1.0."""
+it. Rests, riders and supports were the resting-contact rules of that time, since removed
+(islands have none of them); kept as a check. Expected: no storm, t = 1.0."""
 import os
 import sys
 
