@@ -616,3 +616,29 @@ def test_without_gravity_a_slider_keeps_its_speed_no_friction_without_pressure()
     assert abs(slider.velocity[1]) <= 1e-12 * speed
     assert slider.position[0] == pytest.approx(x + 0.1 * speed, rel=1e-12)
     assert slider.position[1] == pytest.approx(0.0625, abs=1e-12)
+
+
+def test_a_body_an_impact_sends_towards_a_wall_beyond_the_manifold_stops_at_the_wall():
+    """A box resting on a floor, 3 mm from a wall (beyond the reach of its island's manifold
+    while it rests), is struck by a ball at 3 m/s; the island's impact stage sends it at the
+    wall. The step ends before the box could pass the wall's face (``_within_margins``): it
+    meets the wall and bounces back. Before, the step ran its whole length with the wall
+    uncollected and the box sank 2.8 mm into it (corpus scene 187: a circle knocked 2.6 mm
+    into the floor)."""
+    world = World(gravity=(0.0, -G), elasticity=0.5, bounds=(-1.0, -1.0, 2.0, 2.0))
+    world.add_box(-1.0, -0.2, 3.0, 0.2, fixed=True, name="floor")
+    world.add_box(0.303, 0.0, 0.2, 0.5, fixed=True, name="wall")
+    box = world.add_box(0.1, 0.0, 0.2, 0.2, mass=1.0, name="box")
+    world.run_until(0.5)
+    assert world._islands.of(box.id) is not None
+    world.add_circle((-0.2, 0.1), 0.05, mass=1.0, velocity=(3.0, 0.0), name="ball")
+    struck = []
+    world.on_collision(lambda event: struck.append(event.in_island), box)
+    deepest, t = -math.inf, 0.5
+    while t < 0.8:
+        t += 2e-4
+        world.run_until(t)
+        deepest = max(deepest, max(x for x, _ in box.vertices) - 0.303)
+    assert struck[0]  # the ball's impact was solved with the box's island
+    assert deepest <= 1e-9
+    assert box.velocity[0] < 0.0  # bounced off the wall

@@ -50,6 +50,9 @@ MATCH = 1e-9  # the engine may report a contact this much early (s)
 LATE = 1e-12  # ... and this much late, for rounding (s)
 OVERLAP = 1e-9  # allowed overlap, relative to the sum of the two bounding radii
 ENERGY = 1e-12  # allowed relative energy gain per collision
+#: ... under gravity, between two collisions, where an island's steps may have changed the energy by
+#: their integration error (docs/contact.md, "Energy": at most 2e-7 of the scene's energy scale)
+ISLAND_ENERGY = 2e-7
 EXACT = 1e-12  # hand-derived impulses (relative)
 SCENE_EVENTS = 1500  # event budget of one random scene
 WATCHDOG = 10.0  # seconds a forked scene may take before it counts as hung
@@ -754,7 +757,8 @@ def test_a_face_meeting_a_wall_at_one_instant_stops_instead_of_decaying_for_ever
     face: its two corners collide in turn at one instant, the velocity shrinking by a constant
     factor each time, down into denormal numbers (a NaN swept box, then a circle 6% inside it in
     seed 748), or, with the box kept finite, until the event-storm error (104 and 183 are scenes of
-    ``survey.py energy``). A free body left slower than 1e-150 of its size per second stops."""
+    ``survey.py energy``). Such a run of impacts now joins the pair into an island, whose step
+    takes both corners at once."""
     result = guarded(run_scene_to, seed, count, False, False, True, 10.0, timeout=60.0)
     assert result["end"] == 10.0
 
@@ -860,7 +864,7 @@ def test_spinning_scenes_with_islands_gain_no_energy_at_collisions(seed, count, 
     it, none beyond a step's integration error (docs/contact.md, "Energy": 2e-7 of the
     scene's energy)."""
     result = guarded(run_energy_scene, seed, count, gravity)
-    assert result["worst"] <= (2e-7 if gravity else ENERGY), f"energy gain {result['first_bad']}"
+    assert result["worst"] <= (ISLAND_ENERGY if gravity else ENERGY), f"energy gain {result['first_bad']}"
     assert result["collisions"] > 50
 
 
@@ -893,11 +897,13 @@ def test_surveyed_scenes_where_a_lift_went_unpaid_gain_no_energy(seed):
 @SCENE_SETTINGS
 @given(seed=st.integers(0, 2**32 - 1), count=st.integers(5, 12))
 @example(seed=3325, count=5)  # a slide chosen under old loads, driven by its friction
+@example(seed=3992, count=9)  # +4.7e-12 to +7.9e-11 between two collisions, from island steps
 def test_energy_never_increases_at_collisions_under_gravity(seed, count):
-    """Under gravity, kinetic plus potential energy never rises at a collision by more than 1e-12 of
-    the scene's energy scale (its initial energy plus sum m g x the box height)."""
+    """Under gravity, kinetic plus potential energy, compared from one collision to the next, never
+    rises by more than the islands' integration error in between (``ISLAND_ENERGY`` of the scene's
+    energy scale: its initial energy plus sum m g x the box height)."""
     result = guarded(run_energy_scene, seed, count, True)
-    assert result["first_bad"] is None, f"energy gain {result['first_bad']}"
+    assert result["worst"] <= ISLAND_ENERGY, f"energy gain {result['first_bad']}"
 
 
 # ------------------------------------------------------------------ 5. a tilted box tips over and lies flat

@@ -26,9 +26,9 @@ RADIUS = 0.1
 MOMENTUM = 1e-12  # absolute, total momentum starts at 0 with unit masses and speeds
 ENERGY = 1e-12  # relative
 OVERLAP = 1e-9  # relative to the bodies' size
-#: a squeeze of circles ends in about 50 collisions. When the squeeze stops all three bodies,
-#: every speed (and with it the rounding) halves at each collision, so it runs until the speeds
-#: underflow: about 1400 collisions for three boxes with friction. An event storm is 1e6.
+#: a squeeze ends in a few collisions (a pair that collides again within a step and parts
+#: slowly joins an island); as a run of exact impulses, every speed halved at each collision
+#: until the speeds underflowed, about 1400 collisions for three boxes. An event storm is 1e6.
 MAX_COLLISIONS = 3000
 
 
@@ -105,8 +105,7 @@ def test_plastic_squeeze_of_equal_circles_ends_with_all_three_at_rest():
 @pytest.mark.parametrize("kinds", [("box", "circle", "box"), ("circle", "box", "circle"), ("box", "box", "box")])
 @pytest.mark.parametrize("friction", [0.0, 0.7])
 def test_squeeze_with_boxes_ends(kinds, friction):
-    """Boxes stormed too: a pressed contact within rounding got a pivot lift the kernels took for
-    no motion (now at least twice ``still_speed``)."""
+    """Boxes squeezed head-on (they once stormed: a pressed contact within rounding) end too."""
     world, bodies = squeeze(kinds, (0.0, 0.0, 0.0), friction, 0.0)
     assert check_squeeze(world, bodies) >= 2
 

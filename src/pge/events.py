@@ -1,13 +1,9 @@
-"""Event records handed to callbacks and iterators, and the queue's ordering rule.
+"""Event records handed to callbacks and iterators.
 
-The queue is a binary heap (``heapq``) of tuples
-``(time, kind, key1, key2, seq, payload)``. Equal times are broken by kind in
-the order COLLISION, HORIZON, TIMER, FRAME, STOP (so a frame or a stop at time
-t shows the world after everything else that happens at t), then by the two
-body ids of a collision (smaller first), then by insertion order ``seq``.
-Stale entries are not removed: each carries the invalidation counters of its
-bodies and is skipped when popped if a counter has moved on ("lazy
-invalidation").
+The queue itself is compiled (``pge.core.queue``). Equal times are broken by kind in the
+order collision, horizon, timer, frame (``pge.core.layout``), and a run's ``Stop`` comes
+last, so a frame or a stop at time t shows the world after everything else that happens at
+t. The constants below name the kinds of the records.
 """
 
 from __future__ import annotations

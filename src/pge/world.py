@@ -558,6 +558,7 @@ class World:
         """Set a body's mass (positive and finite)."""
         body = self._own(body)
         mass = _positive(body.label(), "mass", mass)
+        self._islands.wake_near(body.id)
         self._state.F[body.id, L.MASS] = mass
         self._set_inverse_mass(body.id)
 
@@ -571,7 +572,9 @@ class World:
     def set_elasticity(self, body: Body, elasticity) -> None:
         """Set a body's elasticity, between 0 and 1."""
         body = self._own(body)
-        self._state.F[body.id, L.ELASTICITY] = _check_elasticity(body.label(), elasticity)
+        elasticity = _check_elasticity(body.label(), elasticity)
+        self._islands.wake_near(body.id)
+        self._state.F[body.id, L.ELASTICITY] = elasticity
 
     def set_angular_velocity(self, body: Body, omega) -> None:
         """Give a body an angular velocity in radians per second (anticlockwise) now. A fixed

@@ -1,4 +1,4 @@
-"""The contact model "islands": bodies in persistent contact form islands, whose contacts are
+"""Contact: bodies in persistent contact form islands, whose contacts are
 solved together at steps of fixed length while every other contact stays exact.
 
 ``manifold``: the touching points of two bodies now; ``island``: one step of an island (the

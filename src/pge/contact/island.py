@@ -831,31 +831,44 @@ def _lemke_solve(W, base, rows, pairs, row, count, nf):
 def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm):
     """Solve the step's contacts exactly: a pushing point reaches its target normal speed
     and no point closes faster than it; a sliding pair's friction is ``mu`` times its normal
-    impulses, against the slide; a sticking pair stops sliding, within the cone. First on
-    the sweeps' active set, then on the last step's (``warm``, the impulses the sweeps
-    started from) (``_active_set``: one linear solve each, right at most steps of a pile),
-    else as a complementarity problem by Lemke's method (``_lemke_solve``). Replaces
-    the impulses and velocities and returns true when the answer checks out
-    (``_residual``); leaves them alone otherwise (a ray, or too many unknowns: the sweeps go
-    on)."""
+    impulses, against the slide; a sticking pair stops sliding, within the cone. Three ways,
+    in order, each answer checked (``_accept``) before the next is tried: on the sweeps'
+    active set, then on the last step's (``warm``, the impulses the sweeps started from)
+    (``_active_set``: one linear solve each, right at most steps of a pile), then as a
+    complementarity problem by Lemke's method (``_lemke_solve``). Replaces the impulses and
+    velocities and returns true with the first answer that checks out; leaves them alone
+    otherwise (a ray, or too many unknowns: the sweeps go on)."""
     ja, jb, body_a, body_b, row, nf = _directions(F, rows, pairs, count, starts, sizes, blocks)
     n = ja.shape[0]
     if count + 3 * nf > LCP_LIMIT:
         return False
     W, base, impulse, inverse = _operator(F, vel, rows, pairs, count, ja, jb, body_a, body_b, row)
     fresh, ok = _active_set(W, base, rows, pairs, row, count, nf, impulse)
-    if not ok:
-        # the last step's active set: a pile's contacts mostly keep theirs from step to step
-        last = np.empty(n)
-        for k in range(n):
-            last[k] = warm[row[k], 0] if k < count else warm[row[k], 1]
-        fresh, ok = _active_set(W, base, rows, pairs, row, count, nf, last)
-    if not ok:
-        fresh, ok = _lemke_solve(W, base, rows, pairs, row, count, nf)
-        if not ok:
-            return False
-    moved = vel.copy()
+    if ok and _accept(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf,
+                      impulse, inverse, fresh):
+        return True
+    # the last step's active set: a pile's contacts mostly keep theirs from step to step
+    last = np.empty(n)
     for k in range(n):
+        last[k] = warm[row[k], 0] if k < count else warm[row[k], 1]
+    fresh, ok = _active_set(W, base, rows, pairs, row, count, nf, last)
+    if ok and _accept(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf,
+                      impulse, inverse, fresh):
+        return True
+    fresh, ok = _lemke_solve(W, base, rows, pairs, row, count, nf)
+    return ok and _accept(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf,
+                          impulse, inverse, fresh)
+
+
+@njit(cache=True)
+def _accept(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf, impulse,
+            inverse, fresh):
+    """Take the impulses ``fresh`` (from ``impulse``, along the directions ``ja``, ``jb``) if
+    the velocities they give pass the sweeps' own test (``_residual`` within
+    ``SOLVE_TOLERANCE`` of ``speed``): then the rows' impulses and ``vel`` are replaced and
+    the answer is true; else nothing changes."""
+    moved = vel.copy()
+    for k in range(ja.shape[0]):
         change = fresh[k] - impulse[k]
         for side in range(2):
             x = body_a[k] if side == 0 else body_b[k]
@@ -1236,6 +1249,26 @@ def _turn_limit(S, members, now, h):
     return max(MAX_TURN / fastest, SHORTEST_STEP * h)
 
 
+@njit(cache=True)
+def _within_margins(F, members, now, margin, h):
+    """``h``, or less where a body moving at its velocities ``now`` (after the impacts) would
+    travel within the step further than the manifold looked round it (its ``margin``, which
+    ``_start`` found for the velocities before them, plus ``CONTACT_MARGIN`` of its reach, as
+    in ``_collect``); at least ``SHORTEST_STEP`` of ``h``."""
+    length = h
+    for k in range(members.shape[0]):
+        i = members[k]
+        ax = F[i, L.FREE_AX]
+        ay = F[i, L.FREE_AY]
+        reach = margin[k] + CONTACT_MARGIN * F[i, L.REACH]
+        travel = math.hypot(now[k, 0] + 0.5 * h * ax, now[k, 1] + 0.5 * h * ay) + abs(now[k, 2]) * F[i, L.REACH]
+        if h * travel + 0.125 * h * h * math.hypot(ax, ay) > reach:
+            # over a step t <= h the travel is at most t (|v| + |w| reach + 5/8 h |a|)
+            rate = math.hypot(now[k, 0], now[k, 1]) + abs(now[k, 2]) * F[i, L.REACH] + 0.625 * h * math.hypot(ax, ay)
+            length = min(length, reach / rate)
+    return max(length, SHORTEST_STEP * h)
+
+
 @njit(cache=True, inline="always")
 def _speed_scale(F, members, now, h, pull):
     """The speed the solves measure their tolerance against: what the strongest
@@ -1287,6 +1320,13 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         # The impacts set a polygon turning faster than the step was cut for.
         h = turned
         natural = min(natural, turned)
+        _force_targets(rows, count, h)
+        speed = _speed_scale(F, members, now, h, pull)
+    covered = _within_margins(F, members, now, margin, h)
+    if covered < h:
+        # The impacts sent a body further than the manifold looked (a body landing on
+        # another drives it towards a floor the step did not collect): the step ends first.
+        h = covered
         _force_targets(rows, count, h)
         speed = _speed_scale(F, members, now, h, pull)
     end = np.empty_like(now)

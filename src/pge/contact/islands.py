@@ -51,7 +51,7 @@ class Island:
 
 
 class Islands:
-    """The islands of one World (contact model "islands")."""
+    """The islands of one World."""
 
     def __init__(self, world, step: float) -> None:
         self.world = world
@@ -62,7 +62,7 @@ class Islands:
         # per body: its last step's push-out lift, and that step's start and end
         self._lift = np.zeros((64, 3))
         self._lift_span = np.zeros((64, 2))
-        self.sweeps = 0  # solver sweeps over all steps (World.stats["island_sweeps"])
+        self.sweeps = 0  # solver sweeps over all steps (for benchmarks)
 
     # ------------------------------------------------------------------ queries
 
@@ -160,7 +160,7 @@ class Islands:
         return target
 
     def leave(self, i: int) -> None:
-        """Take body ``i`` out of its island (removed, fixed, or moved by hand)."""
+        """Take body ``i`` out of its island (removed or fixed)."""
         k = int(self.world._state.I[i, L.ISLAND])
         if k < 0:
             return
@@ -238,7 +238,9 @@ class Islands:
             self._lift = _grown(self._lift, 2 * state.n)
             self._lift_span = _grown(self._lift_span, 2 * state.n)
         members = np.asarray(island.members, dtype=np.int64)
-        for i in island.members:
+        # A lift is all taken back once its step has run its length: only the bodies whose
+        # step was cut short have some left.
+        for i in members[self._lift_span[members, 1] > t].tolist():
             self._unlift(i, t)
         state.ensure_events(2 * members.shape[0] + 16)
         island.keys, island.impulses, labels, fastest, deepest, sweeps, length, lift = step_island(
@@ -248,6 +250,9 @@ class Islands:
         self._lift_span[members, 0] = t
         self._lift_span[members, 1] = t + length
         self.sweeps += sweeps
+        if labels[0] >= 0 and (labels == labels[0]).all():
+            self._after_step(k, island, t, length, fastest, deepest)  # still one island
+            return
         parts: dict[int, list[int]] = {}
         for i, label in zip(members.tolist(), labels.tolist()):
             if label >= 0:
@@ -264,6 +269,11 @@ class Islands:
             for i in group:
                 state.I[i, L.ISLAND] = new
             self._schedule(new, t + length)
+        self._after_step(k, island, t, length, fastest, deepest)
+
+    def _after_step(self, k: int, island: Island, t: float, length: float, fastest: float, deepest: float) -> None:
+        """Island ``k`` stepped at ``t``: it falls asleep if it has been still long enough,
+        else its next step is due after ``length``."""
         if fastest < SLEEP_SPEED and deepest <= SLEEP_OVERLAP:
             if island.still_since is None:
                 island.still_since = t

@@ -2,7 +2,7 @@
 
 State is one tuple ``S`` of arrays (see ``pge.core.state.EngineState``):
 ``(F, I, OL, P, Q, head, static_start, static_items, heap, slot_time,
-slot_key, slot_data, free, stats, out, scratch, pending, group, OB)``; column meanings
+slot_key, slot_data, free, stats, out, scratch, pending, OB, excused)``; column meanings
 are in ``pge.core.layout``.
 
 One event (``run``): pop the earliest queue entry; skip it if stale (a
@@ -374,8 +374,9 @@ def run(S, until, notify_all):
                 stats[L.S_COLLISIONS] += 1
                 if I[a, L.FIXED] == 0 and I[b, L.FIXED] == 0:
                     stats[L.S_PAIR_COLLISIONS] += 1
-            if out[L.OUT_JOIN] != 0.0:
-                stats[L.S_JOINS] += 1
+            if out[L.OUT_JOIN] != L.NO_JOIN:
+                if out[L.OUT_JOIN] != L.WAKE:
+                    stats[L.S_JOINS] += 1
                 return L.JOINED
             if impulse != 0.0 and (notify_all or I[a, L.NOTIFY] != 0 or I[b, L.NOTIFY] != 0):
                 return L.COLLIDED

@@ -3,10 +3,8 @@
 Between events a body moves with constant acceleration and turns with
 constant angular acceleration: at time ``t`` its reference point is at
 ``X + VX dt + AX dt^2 / 2`` and its angle is ``ANGLE + OMEGA dt + ALPHA dt^2 / 2``,
-with ``dt = t - T0``. ``ALPHA`` is nonzero for a circle resting with friction on a
-flat face, whose spin the friction at its contact changes (rolling and skidding),
-and for a body that an island's contact forces turn (``pge.contact``); the
-rotating kernels take it. A polygon's outline rows in ``OL`` are turned to the angle
+with ``dt = t - T0``. ``ALPHA`` is nonzero for a body that an island's contact
+forces turn (``pge.contact``); the rotating kernels take it. A polygon's outline rows in ``OL`` are turned to the angle
 ``ORIENT``; ``orient`` turns them to the body's angle now (from the unturned
 rows in ``OB``, never incrementally, so no rounding accumulates).
 """

@@ -3,8 +3,7 @@
 ``overlap_depth`` measures how far two bodies interpenetrate at ``P[TIME]``
 (negative when apart); ``find_overlap`` looks for a pair among some bodies and
 their grid neighbours that overlaps by more than a tolerance. The World uses
-them to refuse bodies placed into others; the contact code uses them before it
-moves a body by hand (a turning polygon settling flat).
+them to refuse bodies placed into others.
 """
 
 from __future__ import annotations

@@ -147,7 +147,8 @@ def still_speed(F, i, j, ix, iy, ivx, ivy, jx, jy, jvx, jvy):
 @njit(cache=True)
 def predict(S, i, mark):
     """Predict body ``i`` against every candidate (skipping bodies carrying ``mark`` and
-    the body it rests on or that rests on it)."""
+    the pairs an island's step solves: both in one island, or one in an island and the
+    other fixed)."""
     F = S[0]
     I = S[1]
     OL = S[2]

@@ -23,7 +23,7 @@ STORM_TICKS = 8.0
 #: a travel step shorter than this many clock ticks is beyond what the clock can resolve
 MIN_TICKS = 64.0
 
-# ---- the contact model "islands" (pge.contact; docs/contact.md) ----------------------------
+# ---- islands: bodies in persistent contact (pge.contact; docs/contact.md) -----------------
 
 #: seconds between two steps of an awake island (World(contact_step=...) overrides it)
 ISLAND_STEP = 1.0 / 240.0

@@ -69,9 +69,8 @@ def _sliding_off(px, py, vx, vy, outline, start, n, feature):
     """The corner feature (``-(k + 1)``) a circle touching edge ``feature`` is sliding off
     at, or ``feature`` itself when it is not at an end of the edge moving outwards.
 
-    "At an end" has a tolerance of ``_EXTENT_TOLERANCE`` of the edge's length: the
-    contact code that lets a rider leave its edge measures the same position from
-    world coordinates, and the two may round to either side of the end.
+    "At an end" has a tolerance of ``_EXTENT_TOLERANCE`` of the edge's length: a position
+    measured from world coordinates may round to either side of the end.
     """
     if feature < 0:
         return feature
