@@ -69,13 +69,10 @@ def timed_step_island(clock):
         sweeps, struck = timed("impacts", K._impacts, F, members, now, rows, pairs, count, speed, down_x, down_y)
         turned = timed("step length", K._turn_limit, S, members, now, h)
         if turned < h:
-            h = turned
             natural = min(natural, turned)
-            K._force_targets(rows, count, h)
-            speed = K._speed_scale(F, members, now, h, pull)
-        covered = timed("step length", K._within_margins, F, members, now, margin, h)
-        if covered < h:
-            h = covered
+        shorter = timed("step length", K._within_margins, F, members, now, margin, min(h, turned))
+        if shorter < h:
+            h = shorter
             K._force_targets(rows, count, h)
             speed = K._speed_scale(F, members, now, h, pull)
         end = np.empty_like(now)

@@ -1238,7 +1238,6 @@ def _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y
 def _turn_limit(S, members, now, h):
     """``h``, or less where a polygon turns faster than ``MAX_TURN`` a step (a circle's
     spin does not move its outline); at least ``SHORTEST_STEP`` of ``h``."""
-    F = S[0]
     I = S[1]
     fastest = 0.0
     for k in range(members.shape[0]):
@@ -1315,18 +1314,15 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
         speed = _speed_scale(F, members, now, h, pull)
     sweeps, struck = _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y)
+    # The impacts may have set a polygon turning faster than the step was cut for, or sent a
+    # body further than the manifold looked (a body landing on another drives it towards a
+    # floor the step did not collect): the step then ends first.
     turned = _turn_limit(S, members, now, h)
     if turned < h:
-        # The impacts set a polygon turning faster than the step was cut for.
-        h = turned
         natural = min(natural, turned)
-        _force_targets(rows, count, h)
-        speed = _speed_scale(F, members, now, h, pull)
-    covered = _within_margins(F, members, now, margin, h)
-    if covered < h:
-        # The impacts sent a body further than the manifold looked (a body landing on
-        # another drives it towards a floor the step did not collect): the step ends first.
-        h = covered
+    shorter = _within_margins(F, members, now, margin, min(h, turned))
+    if shorter < h:
+        h = shorter
         _force_targets(rows, count, h)
         speed = _speed_scale(F, members, now, h, pull)
     end = np.empty_like(now)

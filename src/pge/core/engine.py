@@ -106,14 +106,11 @@ def touch_one(S, i):
 @njit(cache=True)
 def contact_geometry(S, a, b, feature):
     """Contact point and unit normal (from b towards a) of ``a`` and ``b`` at their common
-    reference time, with ``feature`` from the kernel; also the edge carrying a flat
-    contact: ``(px, py, nx, ny, owner, edge)`` (``owner = -1``: none)."""
+    reference time, with ``feature`` from the kernel: ``(px, py, nx, ny)``."""
     F = S[0]
     I = S[1]
     OL = S[2]
     n_b = I[b, L.OUTLINE_N]
-    owner = -1
-    edge = 0
     if I[a, L.KIND] == CIRCLE:
         if I[b, L.KIND] == CIRCLE:
             px, py, nx, ny = circle_circle_contact(F[a, L.X], F[a, L.Y], F[a, L.RADIUS], F[b, L.X], F[b, L.Y], F[b, L.RADIUS])
@@ -121,10 +118,7 @@ def contact_geometry(S, a, b, feature):
             px, py, nx, ny = circle_polygon_contact(
                 F[a, L.X], F[a, L.Y], F[a, L.RADIUS], F[b, L.X], F[b, L.Y], OL, I[b, L.OUTLINE_START], n_b, feature
             )
-            if feature >= 0:
-                owner = b
-                edge = feature
-        return px, py, nx, ny, owner, edge
+        return px, py, nx, ny
     if F[a, L.OMEGA] != 0.0 or F[b, L.OMEGA] != 0.0:
         # The outlines are turned to now; the angular velocities pick the point of a
         # face-to-face patch (its faster-approaching end).
@@ -137,13 +131,7 @@ def contact_geometry(S, a, b, feature):
         px, py, nx, ny = polygon_polygon_contact(
             F[a, L.X], F[a, L.Y], F[b, L.X], F[b, L.Y], OL, I[a, L.OUTLINE_START], I[a, L.OUTLINE_N], I[b, L.OUTLINE_START], n_b, feature
         )
-    if feature < n_b:
-        owner = b
-        edge = feature
-    else:
-        owner = a
-        edge = feature - n_b
-    return px, py, nx, ny, owner, edge
+    return px, py, nx, ny
 
 
 @njit(cache=True)
@@ -200,7 +188,7 @@ def collide(S, a, b, feature, t):
     advance(F, b, t)
     orient(F, I, S[2], S[17], a, t)
     orient(F, I, S[2], S[17], b, t)
-    px, py, nx, ny, _, _ = contact_geometry(S, a, b, feature)
+    px, py, nx, ny = contact_geometry(S, a, b, feature)
     tx = -ny
     ty = nx
     rax = px - F[a, L.X]
