@@ -22,8 +22,9 @@ travel) are solved together with Coulomb friction, in two stages:
 
 Each stage is a complementarity problem (the push-out without friction), solved by
 sequential impulses (projected Gauss-Seidel) and, where a few sweeps do not converge,
-exactly: on the sweeps' active set (one linear solve) where they found it, else by Lemke's
-method (``pge.numerics.lcp``) on Stewart and Trinkle's formulation.
+exactly: on the sweeps' active set (one linear solve, and a few more where principal
+pivoting moves a wrong set), else by Lemke's method (``pge.numerics.lcp``) on Stewart and
+Trinkle's formulation.
 
 Stages: ``_start`` (bodies to ``t``, velocities now, travel margins), ``_collect`` (the
 manifold), ``_until_contact`` (the step's length: shorter where a bouncing impact is due),
@@ -63,11 +64,13 @@ from pge.core.tuning import (
     EXACT_AFTER,
     FACE_HYSTERESIS,
     IMPACT_ITERATIONS,
+    IMPACT_LCP_LIMIT,
     ISLAND_ITERATIONS,
     LCP_LIMIT,
     MAX_TURN,
     PUSH_RATE,
     PUSH_SLOP,
+    SET_TRIES,
     SHORTEST_STEP,
     SIMULTANEOUS,
     SOLVE_TOLERANCE,
@@ -78,6 +81,8 @@ CIRCLE = 0
 # columns of the solver's contact rows, after the manifold's
 RAX, RAY, RBX, RBY, KN, KT, TARGET, LAMBDA_N, LAMBDA_T, MU, IMPACT = range(NCOLUMNS, NCOLUMNS + 11)
 NSOLVE = NCOLUMNS + 11
+# what an active set gave (``_active_set``)
+SET_SOLVED, SET_MOVED, SET_WRONG = range(3)
 # the warm-start key of a contact: (body a, body b, manifold key) in one integer
 _BODY_BITS = 21
 _KEY_BITS = 16
@@ -473,15 +478,16 @@ def _normal_pair(F, vel, rows, pairs, c):
 
 
 @njit(cache=True)
-def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most):
+def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most, lemke):
     """Sequential impulses over the pairs: the warm start, then sweeps, each pair taking
     friction at its points (within the cone of their normal impulses) then its normal
     impulses (never pulling; a pair's two points together, ``_normal_pair``), until no
     point's speed is off by more than ``SOLVE_TOLERANCE`` times ``speed`` (``_residual``).
     Sweeps converge slowly on tall stacks and piles (their rate falls with the square of the
     height), so after ``EXACT_AFTER`` that did not the problem is solved exactly
-    (``_exact``); where that cannot be done, the sweeps go on, for at most ``most`` in all.
-    Returns the number of sweeps."""
+    (``_exact``, by Lemke's method too only for at most ``lemke`` unknowns); where that
+    cannot be done, the sweeps go on, for at most ``most`` in all. Returns the number of
+    sweeps."""
     starts, sizes, blocks = _blocks(pairs, count)
     # Sweep the pairs in order of height against the acceleration (bottom to top, then back):
     # in a stack, a load then passes all the way down, and the reactions all the way up, in
@@ -527,7 +533,7 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most):
             change = max(change, _into_cone(F, vel, rows, pairs, c, sizes[b]))
         if change == 0.0 or _residual(vel, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
             return sweep + 1
-        if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm):
+        if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm, lemke):
             return sweep + 1
     return most
 
@@ -679,103 +685,188 @@ def _cholesky_solve(A, b):
 
 @njit(cache=True)
 def _active_set(W, base, rows, pairs, row, count, nf, impulse):
-    """The exact answer on the sweeps' active set, when they have found it: which points
-    push (``l > 0``), which pairs stick and which slide, and which way. On that set the
-    problem is linear: a pushing point's normal speed is its target, a sticking pair's
-    sliding speed zero, a sliding pair's friction ``mu`` times its normal impulses against
-    the slide. Solved in least squares with a tiny pull towards the sweeps' impulses, which
-    fixes the share of redundant points (a face on three points, a statically indeterminate
-    pile) and leaves the rest exact. Returns ``(impulses, ok)``; ``ok`` only when the answer
-    satisfies every condition of the problem (the set was right), else Lemke's method
-    decides."""
+    """The exact answer on the active set of ``impulse`` (the sweeps' or the last step's):
+    which points push (``l > 0``), which pairs stick and which slide, and which way. On that
+    set the problem is linear: a pushing point's normal speed is its target, a sticking
+    pair's sliding speed zero, a sliding pair's friction ``mu`` times its normal impulses
+    against the slide (``_set_system``). The answer nearest ``impulse`` among those that
+    solve it (``_set_solve``) fixes the share of redundant points (a face on three points, a
+    statically indeterminate pile) and leaves the rest exact.
+
+    Returns ``(impulses, state)``: ``SET_SOLVED`` when the answer satisfies every condition
+    of the problem (the set was right); ``SET_MOVED`` when it does not, with the next set to
+    try (``_next_set``); ``SET_WRONG`` when the set's system cannot be solved."""
+    n = count + nf
+    unknown, columns, sign, slides = _set_unknowns(rows, pairs, row, count, nf, impulse)
+    m = columns.shape[0]
+    if m == 0:
+        return impulse, SET_WRONG
+    A, b = _set_system(W, base, rows, pairs, row, count, nf, unknown, columns, sign)
+    start = np.empty(m)
+    for j in range(m):
+        start[j] = impulse[columns[j]]
+    y, ok = _set_solve(A, b, start, slides)
+    if not ok:
+        return impulse, SET_WRONG
+    fresh = np.zeros(n)
+    for j in range(m):
+        fresh[columns[j]] = y[j]
+    for f in range(nf):
+        if sign[f] != 0.0:
+            first = row[count + f]
+            fresh[count + f] = sign[f] * rows[first, MU] * _load(fresh, pairs, count, first)
+    speeds = base.copy()
+    for k in range(n):
+        for q in range(n):
+            speeds[k] += W[k, q] * fresh[q]
+    moved = _next_set(speeds, np.abs(base).max(), rows, pairs, row, count, nf, unknown, sign, fresh)
+    return fresh, SET_MOVED if moved else SET_SOLVED
+
+
+@njit(cache=True)
+def _next_set(speeds, scale, rows, pairs, row, count, nf, unknown, sign, fresh):
+    """Check the answer ``fresh`` of an active set (``unknown``, ``sign``: ``_set_unknowns``)
+    against every condition of the problem, at the ``speeds`` it gives, and where one fails
+    move the set (principal pivoting), in ``fresh`` itself: a point that pulls stops
+    pushing, a point without impulse that closes faster than its target pushes, a sticking
+    pair whose friction leaves its cone slides, a sliding pair that slides the way its
+    friction pushes sticks. Returns whether anything moved. Rounding is tolerated to 1e-9
+    of ``scale``, the largest speed without contact impulses."""
+    tolerance = 1e-9 * (scale + 1e-300)
+    moved = False
+    # friction first, against this answer's loads
+    side = np.zeros(nf)  # the next set: -1 or 1 slides that way, 0 sticks
+    for f in range(nf):
+        k = count + f
+        first = row[k]
+        limit = rows[first, MU] * _load(fresh, pairs, count, first)
+        if unknown[k] >= 0:
+            if abs(fresh[k]) > limit * (1.0 + 1e-9):
+                side[f] = 1.0 if fresh[k] > 0.0 else -1.0
+                moved = True
+        elif sign[f] != 0.0:
+            if sign[f] * speeds[k] > tolerance:
+                moved = True
+            else:
+                side[f] = sign[f]
+    largest = 0.0
+    for a in range(count):
+        largest = max(largest, fresh[a])
+    for a in range(count):
+        if fresh[a] < 0.0:
+            fresh[a] = 0.0
+            moved = True
+        elif unknown[a] < 0 and speeds[a] < rows[a, TARGET] - tolerance:
+            # pushing from next time: any positive start will do, the solve finds its value
+            fresh[a] = 1e-12 * largest if largest > 0.0 else 1.0
+            moved = True
+    # the friction of the next set, within the next loads: at the cone's edge where it
+    # slides, strictly inside where it sticks
+    for f in range(nf):
+        k = count + f
+        first = row[k]
+        limit = rows[first, MU] * _load(fresh, pairs, count, first)
+        if side[f] != 0.0:
+            fresh[k] = side[f] * limit
+        else:
+            fresh[k] = min(max(fresh[k], -0.5 * limit), 0.5 * limit)
+    return moved
+
+
+@njit(cache=True)
+def _set_unknowns(rows, pairs, row, count, nf, impulse):
+    """The unknowns of the active set of ``impulse``: every pushing point's normal impulse
+    and every sticking pair's friction (``unknown[k]``: the unknown of direction ``k``, -1
+    for none; ``columns[j]``: the direction of unknown ``j``), the direction each sliding
+    pair slides (``sign``, 0 where it sticks or has no friction), and whether any does."""
     n = count + nf
     unknown = -np.ones(n, dtype=np.int64)
+    columns = np.empty(n, dtype=np.int64)
     m = 0
     for a in range(count):
         if impulse[a] > 0.0:
             unknown[a] = m
+            columns[m] = a
             m += 1
     sign = np.zeros(nf)
+    slides = False
     for f in range(nf):
         first = row[count + f]
         limit = rows[first, MU] * _load(impulse, pairs, count, first)
         if abs(impulse[count + f]) < limit * (1.0 - 1e-9):
             unknown[count + f] = m
+            columns[m] = count + f
             m += 1
         elif impulse[count + f] != 0.0:
             sign[f] = 1.0 if impulse[count + f] > 0.0 else -1.0
-    if m == 0:
-        return impulse, False
-    # impulses = P y: the unknowns themselves, and a sliding pair's friction from its loads
-    P = np.zeros((n, m))
-    for k in range(n):
-        if unknown[k] >= 0:
-            P[k, unknown[k]] = 1.0
+            slides = True
+    return unknown, columns[:m], sign, slides
+
+
+@njit(cache=True)
+def _set_system(W, base, rows, pairs, row, count, nf, unknown, columns, sign):
+    """The linear problem ``A y = b`` on an active set: row ``e`` says that direction
+    ``columns[e]`` reaches its target speed (a point's ``TARGET``, a sticking pair's zero);
+    column ``j`` is what unknown ``j`` does to the speeds, a pushing point's normal impulse
+    bringing with it the friction ``sign mu`` times it where its pair slides."""
+    m = columns.shape[0]
+    # the sliding friction direction a point's normal impulse drags along (-1: none)
+    drags = -np.ones(count, dtype=np.int64)
     for f in range(nf):
         if sign[f] != 0.0:
             first = row[count + f]
-            for a in range(first, first + (2 if _in_block(pairs, count, first) else 1)):
-                if unknown[a] >= 0:
-                    P[count + f, unknown[a]] = sign[f] * rows[first, MU]
-    A = np.zeros((m, m))
-    b = np.zeros(m)
-    for k in range(n):
-        e = unknown[k]
-        if e < 0:
-            continue
+            drags[first] = count + f
+            if _in_block(pairs, count, first):
+                drags[first + 1] = count + f
+    A = np.empty((m, m))
+    b = np.empty(m)
+    for e in range(m):
+        k = columns[e]
         for j in range(m):
-            total = 0.0
-            for q in range(n):
-                total += W[k, q] * P[q, j]
+            q = columns[j]
+            total = W[k, q]
+            if q < count and drags[q] >= 0:
+                g = drags[q]
+                total += sign[g - count] * rows[row[g], MU] * W[k, g]
             A[e, j] = total
         b[e] = (rows[k, TARGET] if k < count else 0.0) - base[k]
-    # least squares, pulled towards the sweeps' answer by eps: (A^T A + eps) y = A^T b + eps y0
-    N = np.zeros((m, m))
-    r = np.zeros(m)
-    scale = 0.0
-    for i in range(m):
-        for j in range(i + 1):
-            total = 0.0
+    return A, b
+
+
+@njit(cache=True)
+def _set_solve(A, b, start, slides):
+    """The solution of ``A y = b`` nearest ``start``, pulled towards it by a tiny ``eps``
+    (which only decides directions ``A`` leaves free). Where no pair slides, ``A`` is part
+    of ``W`` (symmetric, positive semi-definite): ``(A + eps) y = b + eps start``, one
+    Cholesky solve. Else in least squares, ``(A^T A + eps) y = A^T b + eps start``.
+    Returns ``(y, ok)``; ``ok`` false when a pivot is not positive."""
+    m = b.shape[0]
+    if not slides:
+        N = A.copy()
+        r = b.copy()
+        scale = 0.0
+        for i in range(m):
+            scale = max(scale, N[i, i])
+        eps = 1e-12 * scale
+    else:
+        N = np.empty((m, m))
+        r = np.zeros(m)
+        scale = 0.0
+        for i in range(m):
+            for j in range(i + 1):
+                total = 0.0
+                for e in range(m):
+                    total += A[e, i] * A[e, j]
+                N[i, j] = total
+                N[j, i] = total
+            scale = max(scale, N[i, i])
             for e in range(m):
-                total += A[e, i] * A[e, j]
-            N[i, j] = total
-            N[j, i] = total
-        scale = max(scale, N[i, i])
-        for e in range(m):
-            r[i] += A[e, i] * b[e]
-    eps = 1e-13 * scale
-    for k in range(n):
-        if unknown[k] >= 0:
-            N[unknown[k], unknown[k]] += eps
-            r[unknown[k]] += eps * impulse[k]
-    y, ok = _cholesky_solve(N, r)
-    if not ok:
-        return impulse, False
-    fresh = np.zeros(n)
-    for k in range(n):
-        for j in range(m):
-            fresh[k] += P[k, j] * y[j]
-    for a in range(count):
-        if fresh[a] < 0.0:
-            return impulse, False
-    # the speeds of the answer: no point closing faster than its target, a sliding pair
-    # sliding the way its friction opposes, a sticking one inside its cone
-    tolerance = 1e-9 * (np.abs(base).max() + 1e-300)
-    for k in range(n):
-        speed = base[k]
-        for q in range(n):
-            speed += W[k, q] * fresh[q]
-        if k < count:
-            if unknown[k] < 0 and speed < rows[k, TARGET] - tolerance:
-                return impulse, False
-        else:
-            f = k - count
-            first = row[k]
-            if unknown[k] >= 0 and abs(fresh[k]) > rows[first, MU] * _load(fresh, pairs, count, first) * (1.0 + 1e-9):
-                return impulse, False
-            if sign[f] * speed > tolerance:
-                return impulse, False
-    return fresh, True
+                r[i] += A[e, i] * b[e]
+        eps = 1e-13 * scale
+    for i in range(m):
+        N[i, i] += eps
+        r[i] += eps * start[i]
+    return _cholesky_solve(N, r)
 
 
 @njit(cache=True)
@@ -828,36 +919,54 @@ def _lemke_solve(W, base, rows, pairs, row, count, nf):
 
 
 @njit(cache=True)
-def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm):
+def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm, lemke):
     """Solve the step's contacts exactly: a pushing point reaches its target normal speed
     and no point closes faster than it; a sliding pair's friction is ``mu`` times its normal
     impulses, against the slide; a sticking pair stops sliding, within the cone. Three ways,
-    in order, each answer checked (``_accept``) before the next is tried: on the sweeps'
-    active set, then on the last step's (``warm``, the impulses the sweeps started from)
-    (``_active_set``: one linear solve each, right at most steps of a pile), then as a
-    complementarity problem by Lemke's method (``_lemke_solve``). Replaces the impulses and
-    velocities and returns true with the first answer that checks out; leaves them alone
-    otherwise (a ray, or too many unknowns: the sweeps go on)."""
+    in order, each answer checked (``_accept``) before the next is tried: from the sweeps'
+    active set, then from the last step's (``warm``, the impulses the sweeps started from)
+    (``_on_set``: one linear solve per set, right at most steps of a pile), then as a
+    complementarity problem by Lemke's method (``_lemke_solve``, for at most ``lemke``
+    unknowns). Replaces the impulses and velocities and returns true with the first answer
+    that checks out; leaves them alone otherwise (a ray, or too many unknowns: the sweeps go
+    on)."""
     ja, jb, body_a, body_b, row, nf = _directions(F, rows, pairs, count, starts, sizes, blocks)
     n = ja.shape[0]
     if count + 3 * nf > LCP_LIMIT:
         return False
     W, base, impulse, inverse = _operator(F, vel, rows, pairs, count, ja, jb, body_a, body_b, row)
-    fresh, ok = _active_set(W, base, rows, pairs, row, count, nf, impulse)
-    if ok and _accept(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf,
-                      impulse, inverse, fresh):
+    if _on_set(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf, W, base,
+               impulse, inverse, impulse):
         return True
     # the last step's active set: a pile's contacts mostly keep theirs from step to step
     last = np.empty(n)
     for k in range(n):
         last[k] = warm[row[k], 0] if k < count else warm[row[k], 1]
-    fresh, ok = _active_set(W, base, rows, pairs, row, count, nf, last)
-    if ok and _accept(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf,
-                      impulse, inverse, fresh):
+    if _on_set(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf, W, base,
+               impulse, inverse, last):
         return True
+    if count + 3 * nf > lemke:
+        return False
     fresh, ok = _lemke_solve(W, base, rows, pairs, row, count, nf)
     return ok and _accept(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf,
                           impulse, inverse, fresh)
+
+
+@njit(cache=True)
+def _on_set(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf, W, base,
+            impulse, inverse, guess):
+    """Solve on the active set of ``guess`` (``_active_set``) and take the answer if it
+    checks out (``_accept``); where it breaks a condition of the problem, on the set it
+    moves to, at most ``SET_TRIES`` sets in all. Returns whether an answer was taken."""
+    for _ in range(SET_TRIES):
+        fresh, state = _active_set(W, base, rows, pairs, row, count, nf, guess)
+        if state == SET_SOLVED:
+            return _accept(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf,
+                           impulse, inverse, fresh)
+        if state == SET_WRONG:
+            return False
+        guess = fresh
+    return False
 
 
 @njit(cache=True)
@@ -1076,8 +1185,12 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     no touching point closes (or it bounces, ``IMPACT``) and no point with a gap closes by
     more than it within the step; inelastic, so kinetic energy never rises (the energy
     guard scales back what rounding would add). The same solve as the force stage, on the
-    ``IMPACT`` targets, from zero impulses; the rows' targets and warm-start impulses are
-    left as they were. Returns the number of sweeps and each point's normal impulse."""
+    ``IMPACT`` targets, from zero impulses, but finished by Lemke's method only for at most
+    ``IMPACT_LCP_LIMIT`` unknowns: where the active sets fail on a bigger problem, the
+    sweeps stop after ``IMPACT_ITERATIONS``, and the little approach they leave is the
+    force stage's to stop. The rows' targets and
+    warm-start impulses are left as they were. Returns the number of sweeps and each
+    point's normal impulse."""
     struck = np.zeros(count)
     if count == 0:
         return 0, struck
@@ -1095,7 +1208,7 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     rows[:count, TARGET] = rows[:count, IMPACT]
     rows[:count, LAMBDA_N] = 0.0
     rows[:count, LAMBDA_T] = 0.0
-    sweeps = _solve(F, now, rows, pairs, count, speed, down_x, down_y, IMPACT_ITERATIONS)
+    sweeps = _solve(F, now, rows, pairs, count, speed, down_x, down_y, IMPACT_ITERATIONS, IMPACT_LCP_LIMIT)
     scale = _guard(F, members, before, now)
     for k in range(members.shape[0]):
         for q in range(3):
@@ -1158,7 +1271,7 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
     pushing[:, LAMBDA_N] = 0.0
     pushing[:, LAMBDA_T] = 0.0
     pushing[:, MU] = 0.0
-    sweeps = _solve(F, lift, pushing, pairs, count, largest, down_x, down_y, ISLAND_ITERATIONS)
+    sweeps = _solve(F, lift, pushing, pairs, count, largest, down_x, down_y, ISLAND_ITERATIONS, LCP_LIMIT)
     return lift, sweeps
 
 
@@ -1332,7 +1445,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         end[k, 1] = now[k, 1] + h * F[i, L.FREE_AY]
         end[k, 2] = now[k, 2]
     _end_targets(rows, now, pairs, count)
-    sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS)
+    sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS, LCP_LIMIT)
     lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y)
     sweeps += pushes
     labels, fastest, deepest = _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed)

@@ -49,9 +49,16 @@ SOLVE_TOLERANCE = 1e-6
 #: active set, else by Lemke's method): sweeps are cheap but converge slowly on piles, and
 #: four are enough to find the active set at most steps
 EXACT_AFTER = 4
+#: an active set whose answer breaks a condition of the problem moves (principal pivoting)
+#: at most this many times (then the last step's set is tried, then Lemke's method)
+SET_TRIES = 3
 #: the exact solve is tried when the problem has at most this many unknowns (a point each,
 #: three for a pair's friction)
 LCP_LIMIT = 240
+#: ... and the impact stage's by Lemke's method when it has at most this many (an inexact
+#: impact stage leaves a little approach for the force stage; on a bigger problem Lemke
+#: costs about a millisecond, most of a step)
+IMPACT_LCP_LIMIT = 64
 #: a pair is in an island's manifold while its gap is below its step travel plus this times
 #: the smaller bounding radius (so that resting contacts stay listed)
 CONTACT_MARGIN = 0.01

@@ -35,20 +35,29 @@ _ZERO = 1e-12
 
 
 @njit(cache=True)
-def _pivot(T, r, col):
-    """Make column ``col`` a unit column with its 1 in row ``r``."""
-    n, width = T.shape
-    p = T[r, col]
+def _pivot(D, r, c):
+    """Exchange the basic variable of row ``r`` with the non-basic one of column ``c`` in the
+    condensed tableau ``D`` (only the non-basic columns and the right-hand side; a basic
+    variable's column is a unit column and is not kept). Column ``c`` then holds the variable
+    that left."""
+    n, width = D.shape
+    p = D[r, c]
+    # the pivot row apart, so that the row updates below read one array and write another
+    # (which lets the compiler vectorise them)
+    row = np.empty(width)
     for k in range(width):
-        T[r, k] /= p
+        row[k] = D[r, k] / p
+    row[c] = 1.0 / p
     for i in range(n):
-        if i != r:
-            f = T[i, col]
-            if f != 0.0:
-                for k in range(width):
-                    T[i, k] -= f * T[r, k]
-            T[i, col] = 0.0
-    T[r, col] = 1.0
+        if i == r:
+            continue
+        f = D[i, c]
+        if f != 0.0:
+            target = D[i]
+            for k in range(width):
+                target[k] -= f * row[k]
+            target[c] = -(f * row[c])
+    D[r, :] = row
 
 
 @njit(cache=True)
@@ -96,36 +105,42 @@ def lemke(M, q, budget):
             worst = i
     if n == 0 or q[worst] >= 0.0:
         return z, True
-    # Tableau [I | -M | -e | q] for w - M z - e z0 = q; variables 0..n-1 are w,
-    # n..2n-1 are z, 2n is z0, column 2n+1 the right-hand side.
-    width = 2 * n + 2
-    T = np.zeros((n, width))
+    # Condensed tableau [-M | -e | q] of w - M z - e z0 = q: the w are basic (row i holds
+    # w_i), column j < n holds z_j, column n holds z0, column n + 1 the right-hand side.
+    # Variables are numbered w 0..n-1, z n..2n-1, z0 2n.
+    width = n + 2
+    D = np.zeros((n, width))
     for i in range(n):
-        T[i, i] = 1.0
         for j in range(n):
-            T[i, n + j] = -M[i, j]
-        T[i, 2 * n] = -1.0
-        T[i, 2 * n + 1] = q[i]
+            D[i, j] = -M[i, j]
+        D[i, n] = -1.0
+        D[i, n + 1] = q[i]
     z0 = 2 * n
     basis = np.arange(n)
+    slot = -np.ones(2 * n + 1, dtype=np.int64)  # the column of each non-basic variable
+    for j in range(n):
+        slot[n + j] = j
+    slot[z0] = n
     zero = 0.0
     for i in range(n):
         zero = max(zero, abs(q[i]))
     zero *= _ZERO
-    _pivot(T, worst, z0)
-    leaving = basis[worst]
-    basis[worst] = z0
-    for _ in range(budget):
-        entering = leaving + n if leaving < n else leaving - n  # the complement
-        r = _leaving(T, entering, basis, z0, zero)
-        if r < 0:
-            return z, False
-        _pivot(T, r, entering)
+    entering = z0
+    r = worst
+    for _ in range(budget + 1):
+        c = slot[entering]
+        _pivot(D, r, c)
         leaving = basis[r]
         basis[r] = entering
+        slot[entering] = -1
+        slot[leaving] = c
         if leaving == z0:
             for i in range(n):
                 if basis[i] >= n and basis[i] < 2 * n:
-                    z[basis[i] - n] = max(T[i, 2 * n + 1], 0.0)
+                    z[basis[i] - n] = max(D[i, n + 1], 0.0)
             return z, True
+        entering = leaving + n if leaving < n else leaving - n  # the complement
+        r = _leaving(D, slot[entering], basis, z0, zero)
+        if r < 0:
+            return z, False
     return z, False
