@@ -675,3 +675,32 @@ def test_an_active_set_whose_answer_pulls_is_tried_again_without_the_pulling_poi
     assert answer.sum() == pytest.approx(weight, rel=1e-12)
     assert answer @ arms == pytest.approx(0.0, abs=1e-12 * weight)
     assert base + W @ answer == pytest.approx(np.zeros(count), abs=1e-10 * g * h)
+
+
+def test_an_active_set_whose_friction_leaves_its_cone_moves_to_sliding():
+    """A block on a 30 degree slope with mu = 0.3 (below tan 30): the set that guesses it
+    sticks needs more friction than the cone holds, so the set moves to sliding down the
+    slope, where the answer is exact: the normal impulse carries the weight's normal part and
+    the friction is mu times it, against the slide."""
+    from pge.contact import island as K
+    from pge.contact.manifold import NY
+
+    slope, mu, h = math.radians(30.0), 0.3, ISLAND_STEP
+    g_normal, g_along = G * math.cos(slope), G * math.sin(slope)
+    rows = np.zeros((1, K.NSOLVE))
+    rows[0, NY] = 1.0  # the slope's frame: its normal up, its tangent direction (-1, 0)
+    rows[0, K.MU] = mu
+    pairs = np.array([[0, -1, 0, 1]], dtype=np.int64)
+    W = np.eye(2)  # unit inverse mass, no turning
+    base = np.array([-g_normal * h, g_along * h])  # the speeds gravity gives in a step
+    row = np.zeros(2, dtype=np.int64)
+    guess = np.array([g_normal * h, -0.5 * mu * g_normal * h])  # pushing, sticking
+    moved, state = K._active_set(W, base, rows, pairs, row, 1, 1, guess)
+    assert state == K.SET_MOVED
+    assert moved[1] == pytest.approx(-mu * moved[0], rel=1e-15)  # at the cone's edge: sliding
+    answer, state = K._active_set(W, base, rows, pairs, row, 1, 1, moved)
+    assert state == K.SET_SOLVED
+    assert answer[0] == pytest.approx(g_normal * h, rel=1e-12)
+    assert answer[1] == pytest.approx(-mu * g_normal * h, rel=1e-12)
+    sliding = base[1] + answer[1]
+    assert sliding == pytest.approx((g_along - mu * g_normal) * h, rel=1e-12) and sliding > 0.0

@@ -80,7 +80,13 @@ from pge.core.tuning import (
 CIRCLE = 0
 # columns of the solver's contact rows, after the manifold's
 RAX, RAY, RBX, RBY, KN, KT, TARGET, LAMBDA_N, LAMBDA_T, MU, IMPACT = range(NCOLUMNS, NCOLUMNS + 11)
-NSOLVE = NCOLUMNS + 11
+# ... each row's two bodies' inverse mass and inertia (the second's unused where it is fixed)
+MA, IA, MB, IB = range(NCOLUMNS + 11, NCOLUMNS + 15)
+# ... and on a pair's first row, what its sweeps use again and again: the lever arms of its
+# friction (the midpoint of its two points, or its one point), the effective mass along the
+# tangent there, and its two points' normal coupling ``K12`` and ``DET = K11 K22 - K12^2``
+FAX, FAY, FBX, FBY, KF, K12, DET = range(NCOLUMNS + 15, NCOLUMNS + 22)
+NSOLVE = NCOLUMNS + 22
 # what an active set gave (``_active_set``)
 SET_SOLVED, SET_MOVED, SET_WRONG = range(3)
 # the warm-start key of a contact: (body a, body b, manifold key) in one integer
@@ -242,6 +248,10 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
         ib = F[j, L.INV_INERTIA]
         rows[c, KN] = ma + mb + ia * ran * ran + ib * rbn * rbn
         rows[c, KT] = ma + mb + ia * rat * rat + ib * rbt * rbt
+        rows[c, MA] = ma
+        rows[c, IA] = ia
+        rows[c, MB] = mb
+        rows[c, IB] = ib
         rows[c, MU] = combine(F[i, L.FRICTION], F[j, L.FRICTION], Q[L.FRICTION_RULE])
         separation = rows[c, SEPARATION]
         # The impact stage, on the velocities now: a touching point stops closing, or
@@ -270,8 +280,43 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
             if at < warm_keys.shape[0] and warm_keys[at] == key:
                 rows[c, LAMBDA_N] = warm_impulses[at, 0]
                 rows[c, LAMBDA_T] = warm_impulses[at, 1]
+    _pair_constants(rows, pairs, count)
     _force_targets(rows, count, h)
     return keys
+
+
+@njit(cache=True)
+def _pair_constants(rows, pairs, count):
+    """Fill each pair's first row with its friction's lever arms and effective mass and its
+    two points' normal coupling (``FAX`` to ``DET``), from the rows' arms and masses."""
+    c = 0
+    while c < count:
+        pair = _in_block(pairs, count, c)
+        if pair:
+            rax, ray, rbx, rby = _midpoint(rows, c)
+        else:
+            rax, ray, rbx, rby = rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY]
+        nx = rows[c, NX]
+        ny = rows[c, NY]
+        tx = -ny
+        ty = nx
+        rat = rax * ty - ray * tx
+        rbt = rbx * ty - rby * tx
+        rows[c, FAX] = rax
+        rows[c, FAY] = ray
+        rows[c, FBX] = rbx
+        rows[c, FBY] = rby
+        rows[c, KF] = rows[c, MA] + rows[c, MB] + rows[c, IA] * rat * rat + rows[c, IB] * rbt * rbt
+        if pair:
+            d = c + 1
+            k12 = rows[c, MA] + rows[c, MB]
+            k12 += rows[c, IA] * (rows[c, RAX] * ny - rows[c, RAY] * nx) * (rows[d, RAX] * ny - rows[d, RAY] * nx)
+            k12 += rows[c, IB] * (rows[c, RBX] * ny - rows[c, RBY] * nx) * (rows[d, RBX] * ny - rows[d, RBY] * nx)
+            rows[c, K12] = k12
+            rows[c, DET] = rows[c, KN] * rows[d, KN] - k12 * k12
+            c += 2
+        else:
+            c += 1
 
 
 @njit(cache=True)
@@ -284,29 +329,28 @@ def _force_targets(rows, count, h):
 
 
 @njit(cache=True, inline="always")
-def _push_at(F, vel, pairs, c, jx, jy, rax, ray, rbx, rby):
+def _push_at(rows, vel, pairs, c, jx, jy, rax, ray, rbx, rby):
     """Apply the impulse ``(jx, jy)`` at lever arms ``ra`` (first body) and ``rb`` (second,
     which takes it reversed; a fixed body does not move) to the velocities ``vel`` of row
     ``c``'s two bodies."""
     ka = pairs[c, 0]
-    i = pairs[c, 2]
-    vel[ka, 0] += jx * F[i, L.INV_MASS]
-    vel[ka, 1] += jy * F[i, L.INV_MASS]
-    vel[ka, 2] += (rax * jy - ray * jx) * F[i, L.INV_INERTIA]
+    vel[ka, 0] += jx * rows[c, MA]
+    vel[ka, 1] += jy * rows[c, MA]
+    vel[ka, 2] += (rax * jy - ray * jx) * rows[c, IA]
     kb = pairs[c, 1]
     if kb >= 0:
-        j = pairs[c, 3]
-        vel[kb, 0] -= jx * F[j, L.INV_MASS]
-        vel[kb, 1] -= jy * F[j, L.INV_MASS]
-        vel[kb, 2] -= (rbx * jy - rby * jx) * F[j, L.INV_INERTIA]
+        vel[kb, 0] -= jx * rows[c, MB]
+        vel[kb, 1] -= jy * rows[c, MB]
+        vel[kb, 2] -= (rbx * jy - rby * jx) * rows[c, IB]
 
 
 @njit(cache=True, inline="always")
-def _push(F, vel, pairs, rows, c, jn, jt):
+def _push(rows, vel, pairs, c, jn, jt):
     """Apply impulse ``jn`` along the normal and ``jt`` along the tangent at row ``c``'s point."""
     nx = rows[c, NX]
     ny = rows[c, NY]
-    _push_at(F, vel, pairs, c, jn * nx - jt * ny, jn * ny + jt * nx, rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY])
+    _push_at(rows, vel, pairs, c, jn * nx - jt * ny, jn * ny + jt * nx, rows[c, RAX], rows[c, RAY], rows[c, RBX],
+             rows[c, RBY])
 
 
 @njit(cache=True, inline="always")
@@ -342,7 +386,7 @@ def _midpoint(rows, c):
 
 
 @njit(cache=True, inline="always")
-def _friction(F, vel, rows, pairs, c):
+def _friction(vel, rows, pairs, c):
     """Row ``c``'s friction impulse, within the cone of its normal impulse; returns its change."""
     if not (rows[c, KT] > 0.0 and rows[c, MU] > 0.0):
         return 0.0
@@ -352,12 +396,12 @@ def _friction(F, vel, rows, pairs, c):
     old = rows[c, LAMBDA_T]
     new = min(max(old - ut / rows[c, KT], -limit), limit)
     rows[c, LAMBDA_T] = new
-    _push(F, vel, pairs, rows, c, 0.0, new - old)
+    _push(rows, vel, pairs, c, 0.0, new - old)
     return abs(new - old)
 
 
 @njit(cache=True, inline="always")
-def _normal(F, vel, rows, pairs, c):
+def _normal(vel, rows, pairs, c):
     """Row ``c``'s normal impulse alone (never pulling); returns its change."""
     if not rows[c, KN] > 0.0:
         return 0.0
@@ -366,30 +410,24 @@ def _normal(F, vel, rows, pairs, c):
     old = rows[c, LAMBDA_N]
     new = max(old + (rows[c, TARGET] - un) / rows[c, KN], 0.0)
     rows[c, LAMBDA_N] = new
-    _push(F, vel, pairs, rows, c, new - old, 0.0)
+    _push(rows, vel, pairs, c, new - old, 0.0)
     return abs(new - old)
 
 
-@njit(cache=True)
-def _friction_pair(F, vel, rows, pairs, c):
+@njit(cache=True, inline="always")
+def _friction_pair(vel, rows, pairs, c):
     """The friction of a pair's two points (rows ``c`` and ``c + 1``) as one impulse at their
     midpoint, within the cone of their summed normal impulses: the two points' tangential
     constraints are one (the pair slides or sticks as a whole), and solving them apart makes
     the sweeps fight over how to share it. Kept in row ``c``; returns its change."""
     d = c + 1
-    i = pairs[c, 2]
-    j = pairs[c, 3]
-    nx = rows[c, NX]
-    ny = rows[c, NY]
-    tx = -ny
-    ty = nx
-    rax, ray, rbx, rby = _midpoint(rows, c)
+    tx = -rows[c, NY]
+    ty = rows[c, NX]
     mu = rows[c, MU]
-    rat = rax * ty - ray * tx
-    rbt = rbx * ty - rby * tx
-    kt = F[i, L.INV_MASS] + F[j, L.INV_MASS] + F[i, L.INV_INERTIA] * rat * rat + F[j, L.INV_INERTIA] * rbt * rbt
+    kt = rows[c, KF]
     if not (kt > 0.0 and mu > 0.0):
         return 0.0
+    rax, ray, rbx, rby = rows[c, FAX], rows[c, FAY], rows[c, FBX], rows[c, FBY]
     ux, uy = _relative_at(vel, pairs, c, rax, ray, rbx, rby)
     ut = ux * tx + uy * ty
     limit = mu * (rows[c, LAMBDA_N] + rows[d, LAMBDA_N])
@@ -397,12 +435,12 @@ def _friction_pair(F, vel, rows, pairs, c):
     new = min(max(old - ut / kt, -limit), limit)
     rows[c, LAMBDA_T] = new
     rows[d, LAMBDA_T] = 0.0
-    _push_at(F, vel, pairs, c, (new - old) * tx, (new - old) * ty, rax, ray, rbx, rby)
+    _push_at(rows, vel, pairs, c, (new - old) * tx, (new - old) * ty, rax, ray, rbx, rby)
     return abs(new - old)
 
 
-@njit(cache=True)
-def _into_cone(F, vel, rows, pairs, c, size):
+@njit(cache=True, inline="always")
+def _into_cone(vel, rows, pairs, c, size):
     """Bring the friction of the pair at row ``c`` (``size`` points) back into the cone of
     its normal impulses, which the normal update that follows the friction update may have
     shrunk (a warm start that pressed harder than the step needs: gravity switched off);
@@ -421,15 +459,15 @@ def _into_cone(F, vel, rows, pairs, c, size):
     tx = -rows[c, NY]
     ty = rows[c, NX]
     if size == 2:
-        rax, ray, rbx, rby = _midpoint(rows, c)
-        _push_at(F, vel, pairs, c, (new - old) * tx, (new - old) * ty, rax, ray, rbx, rby)
+        _push_at(rows, vel, pairs, c, (new - old) * tx, (new - old) * ty, rows[c, FAX], rows[c, FAY], rows[c, FBX],
+                 rows[c, FBY])
     else:
-        _push(F, vel, pairs, rows, c, 0.0, new - old)
+        _push(rows, vel, pairs, c, 0.0, new - old)
     return abs(new - old)
 
 
-@njit(cache=True)
-def _normal_pair(F, vel, rows, pairs, c):
+@njit(cache=True, inline="always")
+def _normal_pair(vel, rows, pairs, c):
     """The normal impulses of rows ``c`` and ``c + 1`` (two points of one pair, sharing a
     normal) solved together: the 2x2 complementarity problem ``u = K x + b >= target``,
     ``x >= 0``, ``x (u - target) = 0``, by trying its four cases (both pushing, one, none).
@@ -438,16 +476,12 @@ def _normal_pair(F, vel, rows, pairs, c):
     d = c + 1
     nx = rows[c, NX]
     ny = rows[c, NY]
-    i = pairs[c, 2]
-    j = pairs[c, 3]
     k11 = rows[c, KN]
     k22 = rows[d, KN]
-    k12 = F[i, L.INV_MASS] + F[j, L.INV_MASS]
-    k12 += F[i, L.INV_INERTIA] * (rows[c, RAX] * ny - rows[c, RAY] * nx) * (rows[d, RAX] * ny - rows[d, RAY] * nx)
-    k12 += F[j, L.INV_INERTIA] * (rows[c, RBX] * ny - rows[c, RBY] * nx) * (rows[d, RBX] * ny - rows[d, RBY] * nx)
-    det = k11 * k22 - k12 * k12
+    k12 = rows[c, K12]
+    det = rows[c, DET]
     if not (k11 > 0.0 and k22 > 0.0 and det > 1e-6 * k11 * k22):
-        return max(_normal(F, vel, rows, pairs, c), _normal(F, vel, rows, pairs, d))
+        return max(_normal(vel, rows, pairs, c), _normal(vel, rows, pairs, d))
     ux, uy = _relative(vel, pairs, rows, c)
     u1 = ux * nx + uy * ny
     ux, uy = _relative(vel, pairs, rows, d)
@@ -469,11 +503,11 @@ def _normal_pair(F, vel, rows, pairs, c):
                 x1 = 0.0
                 x2 = 0.0
                 if not (b1 >= 0.0 and b2 >= 0.0):
-                    return max(_normal(F, vel, rows, pairs, c), _normal(F, vel, rows, pairs, d))
+                    return max(_normal(vel, rows, pairs, c), _normal(vel, rows, pairs, d))
     rows[c, LAMBDA_N] = x1
     rows[d, LAMBDA_N] = x2
-    _push(F, vel, pairs, rows, c, x1 - a1, 0.0)
-    _push(F, vel, pairs, rows, d, x2 - a2, 0.0)
+    _push(rows, vel, pairs, c, x1 - a1, 0.0)
+    _push(rows, vel, pairs, d, x2 - a2, 0.0)
     return max(abs(x1 - a1), abs(x2 - a2))
 
 
@@ -501,21 +535,21 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most, lemke):
     sizes = sizes[order]
     for b in range(blocks):
         c = starts[b]
-        _push(F, vel, pairs, rows, c, rows[c, LAMBDA_N], 0.0)
+        _push(rows, vel, pairs, c, rows[c, LAMBDA_N], 0.0)
         if sizes[b] == 2:
             d = c + 1
-            _push(F, vel, pairs, rows, d, rows[d, LAMBDA_N], 0.0)
+            _push(rows, vel, pairs, d, rows[d, LAMBDA_N], 0.0)
             total = rows[c, LAMBDA_T] + rows[d, LAMBDA_T]
             limit = rows[c, MU] * (rows[c, LAMBDA_N] + rows[d, LAMBDA_N])
             total = min(max(total, -limit), limit)
             rows[c, LAMBDA_T] = total
             rows[d, LAMBDA_T] = 0.0
-            rax, ray, rbx, rby = _midpoint(rows, c)
-            _push_at(F, vel, pairs, c, -total * rows[c, NY], total * rows[c, NX], rax, ray, rbx, rby)
+            _push_at(rows, vel, pairs, c, -total * rows[c, NY], total * rows[c, NX], rows[c, FAX], rows[c, FAY],
+                     rows[c, FBX], rows[c, FBY])
         else:
             limit = rows[c, MU] * rows[c, LAMBDA_N]
             rows[c, LAMBDA_T] = min(max(rows[c, LAMBDA_T], -limit), limit)
-            _push(F, vel, pairs, rows, c, 0.0, rows[c, LAMBDA_T])
+            _push(rows, vel, pairs, c, 0.0, rows[c, LAMBDA_T])
     warm = rows[:count, LAMBDA_N:LAMBDA_T + 1].copy()  # the last step's answer, as started
     for sweep in range(most):
         change = 0.0
@@ -525,12 +559,12 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most, lemke):
             b = q if sweep % 2 == 0 else blocks - 1 - q
             c = starts[b]
             if sizes[b] == 2:
-                change = max(change, _friction_pair(F, vel, rows, pairs, c))
-                change = max(change, _normal_pair(F, vel, rows, pairs, c))
+                change = max(change, _friction_pair(vel, rows, pairs, c))
+                change = max(change, _normal_pair(vel, rows, pairs, c))
             else:
-                change = max(change, _friction(F, vel, rows, pairs, c))
-                change = max(change, _normal(F, vel, rows, pairs, c))
-            change = max(change, _into_cone(F, vel, rows, pairs, c, sizes[b]))
+                change = max(change, _friction(vel, rows, pairs, c))
+                change = max(change, _normal(vel, rows, pairs, c))
+            change = max(change, _into_cone(vel, rows, pairs, c, sizes[b]))
         if change == 0.0 or _residual(vel, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
             return sweep + 1
         if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm, lemke):
@@ -1034,8 +1068,7 @@ def _residual(vel, rows, pairs, count, starts, sizes, blocks):
         if rows[c, MU] <= 0.0:
             continue
         if sizes[b] == 2:
-            rax, ray, rbx, rby = _midpoint(rows, c)
-            ux, uy = _relative_at(vel, pairs, c, rax, ray, rbx, rby)
+            ux, uy = _relative_at(vel, pairs, c, rows[c, FAX], rows[c, FAY], rows[c, FBX], rows[c, FBY])
             limit = rows[c, MU] * (rows[c, LAMBDA_N] + rows[c + 1, LAMBDA_N])
         else:
             ux, uy = _relative(vel, pairs, rows, c)
