@@ -296,9 +296,23 @@ def run_scene(seed: int, until: float) -> dict:
 # ---------------------------------------------------------------- the corpus run
 
 
+def _warm_up():
+    """Load (or compile) the kernels a corpus scene uses, once per worker and outside any
+    timing: flight and collisions (scene 0's start), and an island's step (a box and a ball
+    landing on a floor; Numba compiles a kernel at its first call, and a scene's first
+    island would otherwise pay for it)."""
+    from pge import World
+
+    build(scene_spec(0)).run_until(0.01)
+    world = World(gravity=(0.0, -9.81), bounds=(-2.0, -1.0, 2.0, 2.0))
+    world.add_box(-2.0, -1.0, 4.0, 1.0, fixed=True)
+    world.add_box(-0.5, 0.05, 0.2, 0.2, mass=1.0, friction=0.5, elasticity=0.3)
+    world.add_circle((0.5, 0.2), 0.1, mass=1.0, friction=0.5, elasticity=0.3)
+    world.run_until(1.0)
+
+
 def _worker(inbox, outbox):
-    world = build(scene_spec(0))  # load the Numba kernels once per worker, outside any timing
-    world.run_until(0.01)
+    _warm_up()
 
     outbox.send(("ready", None))
     while True:
