@@ -512,14 +512,14 @@ def _normal_pair(vel, rows, pairs, c):
 
 
 @njit(cache=True)
-def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most, lemke):
+def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most, lemke_limit):
     """Sequential impulses over the pairs: the warm start, then sweeps, each pair taking
     friction at its points (within the cone of their normal impulses) then its normal
     impulses (never pulling; a pair's two points together, ``_normal_pair``), until no
     point's speed is off by more than ``SOLVE_TOLERANCE`` times ``speed`` (``_residual``).
     Sweeps converge slowly on tall stacks and piles (their rate falls with the square of the
     height), so after ``EXACT_AFTER`` that did not the problem is solved exactly
-    (``_exact``, by Lemke's method too only for at most ``lemke`` unknowns); where that
+    (``_exact``, by Lemke's method too only for at most ``lemke_limit`` unknowns); where that
     cannot be done, the sweeps go on, for at most ``most`` in all. Returns the number of
     sweeps."""
     starts, sizes, blocks = _blocks(pairs, count)
@@ -567,21 +567,20 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most, lemke):
             change = max(change, _into_cone(vel, rows, pairs, c, sizes[b]))
         if change == 0.0 or _residual(vel, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
             return sweep + 1
-        if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm, lemke):
+        if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm, lemke_limit):
             return sweep + 1
     return most
 
 
 @njit(cache=True, inline="always")
-def _arms(rows, c, size):
-    """Lever arms of a block's friction: its point, or the midpoint of its two."""
-    if size == 2:
-        return _midpoint(rows, c)
-    return rows[c, RAX], rows[c, RAY], rows[c, RBX], rows[c, RBY]
+def _arms(rows, c):
+    """Lever arms of the friction of the pair whose first row is ``c``: its point, or the
+    midpoint of its two (``_pair_constants``)."""
+    return rows[c, FAX], rows[c, FAY], rows[c, FBX], rows[c, FBY]
 
 
 @njit(cache=True)
-def _directions(F, rows, pairs, count, starts, sizes, blocks):
+def _directions(F, rows, pairs, count, starts, blocks):
     """The solve's constraint directions: every row's normal, then the friction (tangent at
     the point, or at the midpoint of a pair's two points) of every block with friction.
     Returns ``(ja, jb, body_a, body_b, row, nf)``: each direction's coefficients on its two
@@ -610,7 +609,7 @@ def _directions(F, rows, pairs, count, starts, sizes, blocks):
                 continue
             dx = -rows[r, NY]
             dy = rows[r, NX]
-            rax, ray, rbx, rby = _arms(rows, r, sizes[c - count])
+            rax, ray, rbx, rby = _arms(rows, r)
         ja[k, 0] = dx
         ja[k, 1] = dy
         ja[k, 2] = rax * dy - ray * dx
@@ -953,18 +952,18 @@ def _lemke_solve(W, base, rows, pairs, row, count, nf):
 
 
 @njit(cache=True)
-def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm, lemke):
+def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm, lemke_limit):
     """Solve the step's contacts exactly: a pushing point reaches its target normal speed
     and no point closes faster than it; a sliding pair's friction is ``mu`` times its normal
     impulses, against the slide; a sticking pair stops sliding, within the cone. Three ways,
     in order, each answer checked (``_accept``) before the next is tried: from the sweeps'
     active set, then from the last step's (``warm``, the impulses the sweeps started from)
     (``_on_set``: one linear solve per set, right at most steps of a pile), then as a
-    complementarity problem by Lemke's method (``_lemke_solve``, for at most ``lemke``
+    complementarity problem by Lemke's method (``_lemke_solve``, for at most ``lemke_limit``
     unknowns). Replaces the impulses and velocities and returns true with the first answer
     that checks out; leaves them alone otherwise (a ray, or too many unknowns: the sweeps go
     on)."""
-    ja, jb, body_a, body_b, row, nf = _directions(F, rows, pairs, count, starts, sizes, blocks)
+    ja, jb, body_a, body_b, row, nf = _directions(F, rows, pairs, count, starts, blocks)
     n = ja.shape[0]
     if count + 3 * nf > LCP_LIMIT:
         return False
@@ -979,7 +978,7 @@ def _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm, lemke
     if _on_set(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf, W, base,
                impulse, inverse, last):
         return True
-    if count + 3 * nf > lemke:
+    if count + 3 * nf > lemke_limit:
         return False
     fresh, ok = _lemke_solve(W, base, rows, pairs, row, count, nf)
     return ok and _accept(vel, rows, pairs, count, starts, sizes, blocks, speed, ja, jb, body_a, body_b, row, nf,
