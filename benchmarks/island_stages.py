@@ -57,7 +57,9 @@ def timed_step_island(clock):
         down_x = F[members[0], L.FREE_AX]
         down_y = F[members[0], L.FREE_AY]
         natural = timed("step length", K._turn_limit, S, members, now, h)
-        h = min(timed("step length", K._until_contact, S, now, rows, pairs, count, h), natural)
+        h = min(timed("step length", K._until_contact, S, now, rows, pairs, count, h,
+                      np.full(count, K.BOUNCE_WINDOW)),
+                natural)
         keys = timed("prepare", K._prepare, S, rows, pairs, count, h, warm_keys, warm_impulses)
         speed = K._speed_scale(F, members, now, h, pull)
         shorter = timed("after bounces", K._after_bounces, S, members, now, rows, pairs, count, h, speed, down_x,

@@ -332,6 +332,46 @@ def test_energy_never_rises_at_a_step_and_over_a_step_only_by_the_integration_er
     assert around[-1][1] < around[0][0]
 
 
+def test_a_point_lifting_off_within_a_step_floats_and_its_energy_rises_mid_step_by_the_stated_bound():
+    """A ball (m 2, e 0) resting in its floor's island is given an upward speed ``u0 = g h / 4``
+    at a step. Left free it would land after ``h / 2``; the step's constant contact force, which
+    brings the point back to the floor at the step's end (``end = -u0``, mean normal speed 0),
+    is ``m g / 2`` over the whole step, so the ball decelerates at ``g / 2`` and floats: the
+    force works while the ball rises and takes the work back as it falls. Mid-step the energy is
+    above the step's by ``P u0 (1 - (1 - 2 s / h)^2) / 4`` (``P = m (g h - 2 u0)``), at most
+    ``m (g h)^2 / 32`` at ``s = h / 2`` (docs/contact.md, "Energy": the bound the random scenes'
+    ``ISLAND_ENERGY`` uses); at the step's end it is the step's again, and the next step's
+    impact stage stops the ball (e 0) on the floor."""
+    world = World(gravity=(0.0, -G), elasticity=0.0)
+    world.add_box(-1.0, -1.0, 3.0, 1.0, fixed=True, friction=0.0)
+    ball = world.add_circle((0.5, 0.1001), 0.1, mass=2.0, friction=0.0)
+    world.run_until(0.3)
+    assert ball.resting_on is not None and ball.velocity == (0.0, 0.0)
+    h = ISLAND_STEP
+    u0 = G * h / 4.0
+    ball.velocity = (0.0, u0)
+    start = world.time
+
+    def energy():
+        return 0.5 * ball.mass * (ball.velocity[0] ** 2 + ball.velocity[1] ** 2) + ball.mass * G * ball.position[1]
+
+    e0 = energy()
+    bound = ball.mass * (G * h) ** 2 / 32.0
+    for k in range(1, 16):
+        world.run_until(start + k * h / 16.0)
+        s = world.time - start
+        expected = ball.mass * (G * h - 2.0 * u0) * u0 * (1.0 - (1.0 - 2.0 * s / h) ** 2) / 4.0
+        assert energy() - e0 == pytest.approx(expected, rel=1e-6, abs=1e-9 * bound)
+        assert energy() - e0 <= bound * (1.0 + 1e-9)
+        assert ball.velocity[1] == pytest.approx(u0 * (1.0 - 2.0 * s / h), abs=1e-12)
+        if k == 8:
+            assert energy() - e0 == pytest.approx(bound, rel=1e-6)
+    world.run_until(start + h)
+    assert ball.velocity == (0.0, 0.0)
+    assert abs(ball.position[1] - 0.1) <= 1e-12
+    assert energy() - e0 == pytest.approx(-0.5 * ball.mass * u0 * u0, rel=1e-6)
+
+
 def test_a_ball_spinning_without_friction_lets_its_island_sleep_and_spins_on():
     """A circle's spin does not change its shape and only friction feels it: a ball spinning
     on a frictionless floor beside a box must not keep their island stepping for ever, and

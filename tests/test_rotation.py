@@ -44,6 +44,7 @@ from strategies import (
 )
 
 from pge import Collision, Frame, Stop, World
+from pge.core.tuning import ISLAND_STEP
 
 G = 9.81
 MATCH = 1e-9  # the engine may report a contact this much early (s)
@@ -51,8 +52,12 @@ LATE = 1e-12  # ... and this much late, for rounding (s)
 OVERLAP = 1e-9  # allowed overlap, relative to the sum of the two bounding radii
 ENERGY = 1e-12  # allowed relative energy gain per collision
 #: ... under gravity, between two collisions, where an island's steps may have changed the energy by
-#: their integration error (docs/contact.md, "Energy": at most 2e-7 of the scene's energy scale)
-ISLAND_ENERGY = 2e-7
+#: their integration error (docs/contact.md, "Energy": at most 2e-7 of the scene's energy scale at
+#: a step's end), and a collision may fall inside a step where a point lifts off and lands again: its
+#: constant contact force works while the point rises and takes the work back as it falls, up to
+#: m (g h)^2 / 32 for a body of mass m on its support at the step's middle (test_islands.py,
+#: test_a_point_lifting_off_within_a_step_floats_...), which over the scale's g sum m is g h^2 / 32
+ISLAND_ENERGY = 2e-7 + G * ISLAND_STEP**2 / 32.0
 EXACT = 1e-12  # hand-derived impulses (relative)
 SCENE_EVENTS = 1500  # event budget of one random scene
 WATCHDOG = 10.0  # seconds a forked scene may take before it counts as hung
@@ -897,7 +902,7 @@ def test_surveyed_scenes_where_a_lift_went_unpaid_gain_no_energy(seed):
 @SCENE_SETTINGS
 @given(seed=st.integers(0, 2**32 - 1), count=st.integers(5, 12))
 @example(seed=3325, count=5)  # a slide chosen under old loads, driven by its friction
-@example(seed=3992, count=9)  # +4.7e-12 to +7.9e-11 between two collisions, from island steps
+@example(seed=3992, count=9)  # +2.9e-7 between two collisions, inside the step of a corner lifting off
 def test_energy_never_increases_at_collisions_under_gravity(seed, count):
     """Under gravity, kinetic plus potential energy, compared from one collision to the next, never
     rises by more than the islands' integration error in between (``ISLAND_ENERGY`` of the scene's

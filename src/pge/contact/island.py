@@ -7,8 +7,9 @@ every pair of its bodies, and each body with the fixed bodies near it, closer th
 travel) are solved together with Coulomb friction, in two stages:
 
 * **impacts**: impulses on the velocities now, inelastic (a touching point stops closing, or
-  bounces if it would bounce higher than the rest height; a point with a gap may close by it
-  within the step and no faster);
+  bounces if it would bounce higher than the rest height; so does a point with a gap that
+  closes within ``BOUNCE_WINDOW`` of the step fast enough to bounce, from its gap; any other
+  point with a gap may close by it within the step and no faster);
 * **forces**: the contact forces over the coming step, each constant, found as impulses on
   the velocities at the step's *end* (``v + h a`` without them): a touching or overlapping
   point stops closing, a gap closes by itself at most, a sticking pair stops sliding, a
@@ -60,6 +61,7 @@ from pge.core.grid import gather
 from pge.core.motion import advance, orient
 from pge.numerics.lcp import lemke
 from pge.core.tuning import (
+    BOUNCE_WINDOW,
     CONTACT_MARGIN,
     EXACT_AFTER,
     FACE_HYSTERESIS,
@@ -212,6 +214,56 @@ def _touching(gap, closing, reach, window):
     return gap <= TOUCHING * reach or gap <= closing * window
 
 
+@njit(cache=True, inline="always")
+def _bounce(closing, e, pressing, rest_height, reach):
+    """The normal speed a point closing at ``closing`` leaves with, ``e closing``, if that
+    bounces higher than the rest height against the pressing acceleration; else 0 (it
+    stops closing: an inelastic impact)."""
+    bounce = e * closing
+    if closing > 0.0 and bounce * bounce > 2.0 * pressing * rest_height * reach:
+        return bounce
+    return 0.0
+
+
+@njit(cache=True, inline="always")
+def _arrival(gap, u, a):
+    """The earliest time a gap ``gap > 0`` with normal speed ``u`` (positive: opening) and
+    normal acceleration ``a`` closes, the earliest root of ``gap + u t + a t^2 / 2``
+    (computed stably as ``2 gap / (-u + sqrt(u^2 - 2 a gap))``); infinity if it never does."""
+    discriminant = u * u - 2.0 * a * gap
+    if discriminant < 0.0:
+        return math.inf
+    below = -u + math.sqrt(discriminant)
+    if not below > 0.0:
+        return math.inf
+    return 2.0 * gap / below
+
+
+@njit(cache=True, inline="always")
+def _free_approach(F, pairs, c, nx, ny):
+    """Row ``c``'s relative free acceleration along its normal ``(nx, ny)`` (a fixed body
+    does not accelerate)."""
+    i = pairs[c, 2]
+    j = pairs[c, 3]
+    ax = F[i, L.FREE_AX]
+    ay = F[i, L.FREE_AY]
+    if pairs[c, 1] >= 0:
+        ax -= F[j, L.FREE_AX]
+        ay -= F[j, L.FREE_AY]
+    return ax * nx + ay * ny
+
+
+@njit(cache=True, inline="always")
+def _row_bounce(F, Q, rest_height, i, j, closing, reach):
+    """``_bounce`` for a row of bodies ``i`` and ``j``, with their elasticities and the
+    stronger of their free accelerations."""
+    if not closing > 0.0:
+        return 0.0
+    e = combine(F[i, L.ELASTICITY], F[j, L.ELASTICITY], Q[L.RULE])
+    pressing = max(math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]), math.hypot(F[j, L.FREE_AX], F[j, L.FREE_AY]))
+    return _bounce(closing, e, pressing, rest_height, reach)
+
+
 @njit(cache=True)
 def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
     """Lever arms, effective masses, friction and target normal speeds of every row, and the
@@ -220,6 +272,7 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
     Q = S[4]
     rest_height = S[3][L.REST_HEIGHT]
     window = SIMULTANEOUS * S[3][L.CONTACT_STEP]
+    early = BOUNCE_WINDOW * S[3][L.CONTACT_STEP]
     keys = np.empty(count, dtype=np.int64)
     for c in range(count):
         i = pairs[c, 2]
@@ -254,23 +307,13 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
         rows[c, IB] = ib
         rows[c, MU] = combine(F[i, L.FRICTION], F[j, L.FRICTION], Q[L.FRICTION_RULE])
         separation = rows[c, SEPARATION]
-        # The impact stage, on the velocities now: a touching point stops closing, or
-        # bounces if it closes fast enough to bounce higher than the rest height; a point
-        # with a gap may close by it within the step, no faster.
         reach = min(F[i, L.REACH], F[j, L.REACH])
         ux = F[i, L.VX] - F[i, L.OMEGA] * ray - (F[j, L.VX] - F[j, L.OMEGA] * rby)
         uy = F[i, L.VY] + F[i, L.OMEGA] * rax - (F[j, L.VY] + F[j, L.OMEGA] * rbx)
         closing = -(ux * nx + uy * ny)
-        if _touching(separation, closing, reach, window):
-            e = combine(F[i, L.ELASTICITY], F[j, L.ELASTICITY], Q[L.RULE])
-            pressing = max(math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]), math.hypot(F[j, L.FREE_AX], F[j, L.FREE_AY]))
-            bounce = e * closing
-            impact = 0.0
-            if closing > 0.0 and bounce * bounce > 2.0 * pressing * rest_height * reach:
-                impact = bounce
-        else:
-            impact = -separation / h
-        rows[c, IMPACT] = impact
+        approach = _free_approach(F, pairs, c, nx, ny)
+        rows[c, IMPACT] = _impact_target(F, Q, rest_height, i, j, separation, closing, approach, reach, h, window,
+                                         early)
         key = _contact_key(i, j, np.int64(rows[c, KEY]))
         keys[c] = key
         rows[c, LAMBDA_N] = 0.0
@@ -283,6 +326,23 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
     _pair_constants(rows, pairs, count)
     _force_targets(rows, count, h)
     return keys
+
+
+@njit(cache=True, inline="always")
+def _impact_target(F, Q, rest_height, i, j, separation, closing, approach, reach, h, window, early):
+    """A row's target normal speed for the impact stage, on the velocities now: a touching
+    point stops closing, or bounces if it closes fast enough to bounce higher than the rest
+    height; so does a point whose gap closes within ``early`` (``BOUNCE_WINDOW`` of the
+    step; ``approach`` is the free acceleration along the normal) and that closes fast
+    enough now to bounce; any other point with a gap may close by it within the step, no
+    faster."""
+    if _touching(separation, closing, reach, window):
+        return _row_bounce(F, Q, rest_height, i, j, closing, reach)
+    if _arrival(separation, -closing, approach) < early:
+        bounce = _row_bounce(F, Q, rest_height, i, j, closing, reach)
+        if bounce > 0.0:
+            return bounce
+    return -separation / h
 
 
 @njit(cache=True)
@@ -1308,7 +1368,7 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
 
 
 @njit(cache=True)
-def _until_contact(S, now, rows, pairs, count, h):
+def _until_contact(S, now, rows, pairs, count, h, early):
     """The step's length: ``h``, or less where a point with a gap (wider than ``TOUCHING``
     of its pair's reach) would close it sooner, with the velocities now and the free
     accelerations (the earliest root of ``s + u t + a t^2 / 2``), fast enough to bounce
@@ -1316,12 +1376,16 @@ def _until_contact(S, now, rows, pairs, count, h):
     that impact with its restitution; a step across it would let the gap close and stop
     there, an inelastic impact (which is right for a point that would not bounce, so such
     points leave the step alone). A point that touches now (``_touching``) is the impact
-    stage's already. No shorter than ``SHORTEST_STEP`` of ``h``, so that time
-    always moves on."""
+    stage's already, and so is one that closes within ``early[c]`` of the island's step
+    (``BOUNCE_WINDOW``, or 0 for a row the step will not bounce): it bounces now if it closes fast enough now, else it arrives
+    too slow to bounce but for what the window's acceleration adds, and its gap's bound
+    stops it. So with the window a step is cut no shorter than it; never below
+    ``SHORTEST_STEP`` of ``h``, so that time always moves on."""
     F = S[0]
     Q = S[4]
     rest_height = S[3][L.REST_HEIGHT]
     window = SIMULTANEOUS * S[3][L.CONTACT_STEP]
+    step = S[3][L.CONTACT_STEP]
     length = h
     for c in range(count):
         i = pairs[c, 2]
@@ -1333,27 +1397,18 @@ def _until_contact(S, now, rows, pairs, count, h):
         ux, uy = _relative_at(
             now, pairs, c, rows[c, PX] - F[i, L.X], rows[c, PY] - F[i, L.Y], rows[c, PX] - F[j, L.X], rows[c, PY] - F[j, L.Y]
         )
-        ax = F[i, L.FREE_AX]
-        ay = F[i, L.FREE_AY]
-        if pairs[c, 1] >= 0:  # a fixed body does not accelerate
-            ax -= F[j, L.FREE_AX]
-            ay -= F[j, L.FREE_AY]
         u = ux * nx + uy * ny
-        a = ax * nx + ay * ny
+        a = _free_approach(F, pairs, c, nx, ny)
         if _touching(gap, -u, reach, window):
             continue  # the impact stage takes it now
-        discriminant = u * u - 2.0 * a * gap
-        if discriminant < 0.0:
+        when = _arrival(gap, u, a)
+        if when < early[c] * step:
+            # it bounces now, from its gap, where it closes fast enough now; else it arrives
+            # slower than a quarter step's acceleration gives, and its gap's bound stops it
             continue
-        below = -u + math.sqrt(discriminant)  # 2 gap / below is the earliest root, stably
-        if not below > 0.0:
-            continue
-        when = 2.0 * gap / below
         if when >= length:
             continue
-        bounce = -(u + a * when) * combine(F[i, L.ELASTICITY], F[j, L.ELASTICITY], Q[L.RULE])
-        pressing = max(math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]), math.hypot(F[j, L.FREE_AX], F[j, L.FREE_AY]))
-        if bounce > 0.0 and bounce * bounce > 2.0 * pressing * rest_height * reach:
+        if _row_bounce(F, Q, rest_height, i, j, -(u + a * when), reach) > 0.0:
             length = when
     return max(length, SHORTEST_STEP * h)
 
@@ -1364,7 +1419,9 @@ def _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y
     that then closes within the step (a ball between two walls). Its impact comes at that
     instant, so that the impact stage takes it with its restitution too; across it, the
     gap's speculative bound would stop the body there, an inelastic impact. The bounces are
-    tried on copies, without the gaps' bounds (which would hide the speed they give)."""
+    tried on copies, without the gaps' bounds (which would hide the speed they give). The
+    bounce window does not apply to a point whose speed they changed: this step's impact
+    stage does not bounce it."""
     bounces = False
     for c in range(count):
         bounces = bounces or rows[c, IMPACT] > 0.0
@@ -1376,7 +1433,13 @@ def _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y
             trial[c, IMPACT] = -math.inf
     moved = now.copy()
     _impacts(S[0], members, moved, trial, pairs, count, speed, down_x, down_y)
-    return _until_contact(S, moved, trial, pairs, count, h)
+    early = np.full(count, BOUNCE_WINDOW)
+    for c in range(count):
+        ux, uy = _relative(now, pairs, rows, c)
+        wx, wy = _relative(moved, pairs, rows, c)
+        if ux != wx or uy != wy:
+            early[c] = 0.0
+    return _until_contact(S, moved, trial, pairs, count, h, early)
 
 
 @njit(cache=True)
@@ -1450,7 +1513,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     down_x = F[members[0], L.FREE_AX]
     down_y = F[members[0], L.FREE_AY]
     natural = _turn_limit(S, members, now, h)
-    h = min(_until_contact(S, now, rows, pairs, count, h), natural)
+    h = min(_until_contact(S, now, rows, pairs, count, h, np.full(count, BOUNCE_WINDOW)), natural)
     keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
     speed = _speed_scale(F, members, now, h, pull)
     shorter = _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y)

@@ -34,6 +34,12 @@ SHORTEST_STEP = 1e-6
 #: the step's forces keep the directions of its start while corners move on arcs, which
 #: leaves overlaps of about MAX_TURN^2 / 2 of a reach for the next step to push out
 MAX_TURN = 0.01
+#: a point with a gap that closes within this fraction of ISLAND_STEP, fast enough to bounce,
+#: bounces at the step's start, from its gap, instead of cutting the step short at its
+#: arrival: a pile's bounces then cost at most 1 / BOUNCE_WINDOW steps per ISLAND_STEP, not
+#: one step each (the bounce comes early by at most this fraction of a step's travel, and
+#: with the speed of now: no energy is gained)
+BOUNCE_WINDOW = 0.25
 #: points of an island whose gaps close within this fraction of ISLAND_STEP of each other
 #: take their impacts together (a face landing level to rounding lands as a face)
 SIMULTANEOUS = 1e-3
