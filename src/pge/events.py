@@ -43,6 +43,12 @@ class Collision(NamedTuple):
     with that island's contacts at the same instant, so ``impulse`` is this
     pair's share of that solve, and the bodies' change of motion also holds the
     island's other contact impulses. False for an exact two-body impulse.
+
+    ``patch`` is set where a face met a face and both ends of the touching stretch took the
+    impact together (docs/rotation.md, "Response"): ``((x1, y1, j1), (x2, y2, j2), jt)``, the two
+    ends with their normal impulses and the friction impulse at their midpoint (along
+    ``(-normal[1], normal[0])``); ``impulse`` is then ``j1 + j2``, and ``point`` and
+    ``approach_speed`` are the first touching point's. None for an impulse at one point.
     """
 
     time: float
@@ -53,6 +59,7 @@ class Collision(NamedTuple):
     impulse: float
     approach_speed: float
     in_island: bool = False
+    patch: Any = None
 
     kind = "collision"
 

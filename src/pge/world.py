@@ -44,6 +44,15 @@ _OPTIONS = frozenset(
 )
 
 
+
+def _patch_record(out) -> tuple:
+    """A face patch's ends and impulses from the loop's record (``Collision.patch``)."""
+    return (
+        (float(out[L.OUT_X1]), float(out[L.OUT_Y1]), float(out[L.OUT_L1])),
+        (float(out[L.OUT_X2]), float(out[L.OUT_Y2]), float(out[L.OUT_L2])),
+        float(out[L.OUT_JT]),
+    )
+
 class World:
     """A 2D world of circles and convex polygons moving under constant accelerations.
 
@@ -862,6 +871,7 @@ class World:
                     float(out[L.OUT_IMPULSE]),
                     float(out[L.OUT_SPEED]),
                     absorbed,
+                    _patch_record(out) if out[L.OUT_PATCH] == 1.0 and not absorbed else None,
                 )
                 self._notify(record)
             elif code == L.FIRED_TIMER:

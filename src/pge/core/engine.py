@@ -21,12 +21,13 @@ import numpy as np
 from pge._jit_cache import njit
 
 from pge.core import layout as L
-from pge.core.impulse import contact_impulse
+from pge.contact.manifold import NCOLUMNS, NX, NY, PX, PY, SEPARATION, polygon_polygon_points
+from pge.core.impulse import contact_impulse, patch_impulse
 from pge.core.motion import advance, orient
 from pge.core.predict import new_mark, place, predict
 from pge.core.queue import pop_earliest
 from pge.core.response import apply_impulse, combine, contact_response
-from pge.core.tuning import CONTACT_MARGIN, STORM_SPAN, STORM_TICKS
+from pge.core.tuning import CONTACT_MARGIN, FACE_HYSTERESIS, SIMULTANEOUS, STORM_SPAN, STORM_TICKS, TOUCHING
 from pge.toi.circle_circle import circle_circle_contact
 from pge.toi.circle_polygon import circle_polygon_contact
 from pge.toi.polygon_polygon import polygon_polygon_contact
@@ -135,6 +136,87 @@ def contact_geometry(S, a, b, feature):
 
 
 @njit(cache=True)
+def face_patch(S, a, b, nx, ny, reach):
+    """Whether polygons ``a`` and ``b``, colliding now with normal ``n``, meet face to face:
+    their manifold (``pge.contact.manifold``) has two points along ``n`` and both touch as an
+    island's step counts touching (``TOUCHING`` of the smaller reach, or closing within
+    ``SIMULTANEOUS`` of the island step), so that a face landing flat to rounding lands as a
+    face. Both ends must be closing (where one separates, the impact is the other's alone).
+    Returns ``(found, x1, y1, x2, y2)``, the two points."""
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    rows = np.empty((4, NCOLUMNS))
+    count = polygon_polygon_points(
+        F[a, L.X], F[a, L.Y], OL, I[a, L.OUTLINE_START], I[a, L.OUTLINE_N],
+        F[b, L.X], F[b, L.Y], I[b, L.OUTLINE_START], I[b, L.OUTLINE_N],
+        reach, FACE_HYSTERESIS * (F[a, L.REACH] + F[b, L.REACH]), rows, 0,
+    )
+    if count != 2 or rows[0, NX] * nx + rows[0, NY] * ny < 1.0 - 1e-9:
+        return False, 0.0, 0.0, 0.0, 0.0
+    window = SIMULTANEOUS * S[3][L.CONTACT_STEP]
+    for k in range(2):
+        rax = rows[k, PX] - F[a, L.X]
+        ray = rows[k, PY] - F[a, L.Y]
+        rbx = rows[k, PX] - F[b, L.X]
+        rby = rows[k, PY] - F[b, L.Y]
+        ux = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
+        uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
+        closing = -(ux * nx + uy * ny)
+        gap = rows[k, SEPARATION]
+        if not closing > 0.0 or not (gap <= TOUCHING * reach or gap <= closing * window):
+            return False, 0.0, 0.0, 0.0, 0.0
+    return True, rows[0, PX], rows[0, PY], rows[1, PX], rows[1, PY]
+
+
+@njit(cache=True, inline="always")
+def _cross(rx, ry, dx, dy):
+    return rx * dy - ry * dx
+
+
+@njit(cache=True)
+def patch_collide(F, a, b, x1, y1, x2, y2, nx, ny, restitution, mu):
+    """The impact of a face on a face at points ``(x1, y1)`` and ``(x2, y2)``
+    (``pge.core.impulse.patch_impulse``: both ends together, friction at their midpoint),
+    applied to ``a`` and (opposite) ``b``. Returns the two normal impulses and the friction
+    impulse."""
+    tx = -ny
+    ty = nx
+    mx = 0.5 * (x1 + x2)
+    my = 0.5 * (y1 + y2)
+    u1 = 0.0
+    u2 = 0.0
+    ut = 0.0
+    k11 = k12 = k22 = k1t = k2t = ktt = 0.0
+    for x, side in ((a, 1.0), (b, -1.0)):
+        m = F[x, L.INV_MASS]
+        inertia = F[x, L.INV_INERTIA]
+        cx = F[x, L.X]
+        cy = F[x, L.Y]
+        c1 = _cross(x1 - cx, y1 - cy, nx, ny)
+        c2 = _cross(x2 - cx, y2 - cy, nx, ny)
+        cm = _cross(mx - cx, my - cy, tx, ty)
+        k11 += m + inertia * c1 * c1
+        k12 += m + inertia * c1 * c2
+        k22 += m + inertia * c2 * c2
+        k1t += inertia * c1 * cm
+        k2t += inertia * c2 * cm
+        ktt += m + inertia * cm * cm
+        w = F[x, L.OMEGA]
+        u1 += side * ((F[x, L.VX] - w * (y1 - cy)) * nx + (F[x, L.VY] + w * (x1 - cx)) * ny)
+        u2 += side * ((F[x, L.VX] - w * (y2 - cy)) * nx + (F[x, L.VY] + w * (x2 - cx)) * ny)
+        ut += side * ((F[x, L.VX] - w * (my - cy)) * tx + (F[x, L.VY] + w * (mx - cx)) * ty)
+    l1, l2, jt = patch_impulse(u1, u2, ut, k11, k12, k22, k1t, k2t, ktt, restitution, mu)
+    for x, side in ((a, 1.0), (b, -1.0)):
+        cx = F[x, L.X]
+        cy = F[x, L.Y]
+        apply_impulse(F, x, side * l1 * nx, side * l1 * ny, x1 - cx, y1 - cy)
+        apply_impulse(F, x, side * l2 * nx, side * l2 * ny, x2 - cx, y2 - cy)
+        apply_impulse(F, x, side * jt * tx, side * jt * ty, mx - cx, my - cy)
+    return l1, l2, jt
+
+
+@njit(cache=True)
 def joins(S, a, b, nx, ny, leaving):
     """Whether the contact of ``a`` and ``b`` (normal ``n`` from b to a), leaving at
     ``leaving`` after its impulse, is persistent: the bodies' accelerations would bring
@@ -211,7 +293,22 @@ def collide(S, a, b, feature, t):
         and -normal_speed * within < reach
         and last != t
     )
-    if normal_speed < 0.0 and not absorb:
+    patch = False
+    if normal_speed < 0.0 and not absorb and I[a, L.KIND] != CIRCLE and I[b, L.KIND] != CIRCLE:
+        patch, x1, y1, x2, y2 = face_patch(S, a, b, nx, ny, reach)
+        if patch:
+            restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
+            mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
+            l1, l2, jt = patch_collide(F, a, b, x1, y1, x2, y2, nx, ny, restitution, mu)
+            impulse = l1 + l2
+            out[L.OUT_X1] = x1
+            out[L.OUT_Y1] = y1
+            out[L.OUT_X2] = x2
+            out[L.OUT_Y2] = y2
+            out[L.OUT_L1] = l1
+            out[L.OUT_L2] = l2
+            out[L.OUT_JT] = jt
+    if normal_speed < 0.0 and not absorb and not patch:
         restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
         mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
         ann, ant, att = contact_response(F, a, rax, ray, nx, ny, tx, ty)
@@ -261,6 +358,7 @@ def collide(S, a, b, feature, t):
     out[L.OUT_IMPULSE] = impulse
     out[L.OUT_SPEED] = -normal_speed
     out[L.OUT_JOIN] = join
+    out[L.OUT_PATCH] = 1.0 if patch else 0.0
     return impulse
 
 

@@ -138,7 +138,10 @@ OUT_JOIN = 11  # what the collision in `out` asks of the islands: one of the cod
 #: bodies' islands (a persistent contact); wake the island hit (no join); take the impact
 #: into the island hit, whose step solves it with its contacts (no impulse applied yet)
 NO_JOIN, JOIN, WAKE, ABSORB = 0.0, 1.0, 2.0, 3.0
-NOUT = 12
+#: a face that met a face with both ends taking the impact (``pge.core.engine.patch_collide``):
+#: 1.0, then the two ends, their normal impulses and the friction impulse at their midpoint
+OUT_PATCH, OUT_X1, OUT_Y1, OUT_X2, OUT_Y2, OUT_L1, OUT_L2, OUT_JT = range(12, 20)
+NOUT = 20
 
 # ---- return codes of the loop --------------------------------------------------
 DONE = 0  # the next event is after `until`
