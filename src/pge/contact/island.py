@@ -240,16 +240,17 @@ def _arrival(gap, u, a):
 
 
 @njit(cache=True, inline="always")
-def _free_approach(F, pairs, c, nx, ny):
-    """Row ``c``'s relative free acceleration along its normal ``(nx, ny)`` (a fixed body
-    does not accelerate)."""
+def _approach_acceleration(F, pairs, c, nx, ny):
+    """Row ``c``'s relative acceleration along its normal ``(nx, ny)``, each body's as the
+    last step left it (its contact forces included: a body resting on a floor does not
+    fall towards the body landing on it); a fixed body does not accelerate."""
     i = pairs[c, 2]
     j = pairs[c, 3]
-    ax = F[i, L.FREE_AX]
-    ay = F[i, L.FREE_AY]
+    ax = F[i, L.AX]
+    ay = F[i, L.AY]
     if pairs[c, 1] >= 0:
-        ax -= F[j, L.FREE_AX]
-        ay -= F[j, L.FREE_AY]
+        ax -= F[j, L.AX]
+        ay -= F[j, L.AY]
     return ax * nx + ay * ny
 
 
@@ -311,7 +312,7 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
         ux = F[i, L.VX] - F[i, L.OMEGA] * ray - (F[j, L.VX] - F[j, L.OMEGA] * rby)
         uy = F[i, L.VY] + F[i, L.OMEGA] * rax - (F[j, L.VY] + F[j, L.OMEGA] * rbx)
         closing = -(ux * nx + uy * ny)
-        approach = _free_approach(F, pairs, c, nx, ny)
+        approach = _approach_acceleration(F, pairs, c, nx, ny)
         rows[c, IMPACT] = _impact_target(F, Q, rest_height, i, j, separation, closing, approach, reach, h, window,
                                          early)
         key = _contact_key(i, j, np.int64(rows[c, KEY]))
@@ -333,7 +334,8 @@ def _impact_target(F, Q, rest_height, i, j, separation, closing, approach, reach
     """A row's target normal speed for the impact stage, on the velocities now: a touching
     point stops closing, or bounces if it closes fast enough to bounce higher than the rest
     height; so does a point whose gap closes within ``early`` (``BOUNCE_WINDOW`` of the
-    step; ``approach`` is the free acceleration along the normal) and that closes fast
+    step; ``approach`` is the relative acceleration along the normal,
+    ``_approach_acceleration``) and that closes fast
     enough now to bounce; any other point with a gap may close by it within the step, no
     faster."""
     if _touching(separation, closing, reach, window):
@@ -1370,9 +1372,9 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
 @njit(cache=True)
 def _until_contact(S, now, rows, pairs, count, h, early):
     """The step's length: ``h``, or less where a point with a gap (wider than ``TOUCHING``
-    of its pair's reach) would close it sooner, with the velocities now and the free
-    accelerations (the earliest root of ``s + u t + a t^2 / 2``), fast enough to bounce
-    higher than the rest height. Stepping again when it closes lets the impact stage take
+    of its pair's reach) would close it sooner, with the velocities now and the accelerations
+    the last step left (``_approach_acceleration``; the earliest root of
+    ``s + u t + a t^2 / 2``), fast enough to bounce higher than the rest height. Stepping again when it closes lets the impact stage take
     that impact with its restitution; a step across it would let the gap close and stop
     there, an inelastic impact (which is right for a point that would not bounce, so such
     points leave the step alone). A point that touches now (``_touching``) is the impact
@@ -1398,7 +1400,7 @@ def _until_contact(S, now, rows, pairs, count, h, early):
             now, pairs, c, rows[c, PX] - F[i, L.X], rows[c, PY] - F[i, L.Y], rows[c, PX] - F[j, L.X], rows[c, PY] - F[j, L.Y]
         )
         u = ux * nx + uy * ny
-        a = _free_approach(F, pairs, c, nx, ny)
+        a = _approach_acceleration(F, pairs, c, nx, ny)
         if _touching(gap, -u, reach, window):
             continue  # the impact stage takes it now
         when = _arrival(gap, u, a)
