@@ -73,8 +73,8 @@ def test_a_stack_of_10_boxes_dropped_with_gaps_and_offsets_settles_and_then_make
     for k, body in enumerate(boxes):
         assert body.position[1] == pytest.approx(0.1 + 0.2 * k, abs=1e-9)
         assert abs(body.angle) < 1e-9
-        # little skating: at most 8.7e-3 in 8 draws (6.3e-3 before principal pivoting),
-        # from rocking after the landings (the rules model: up to 0.036)
+        # little skating: at most 5.9e-3 in 8 draws (docs/contact.md, "Gaps"), from rocking
+        # after the landings (the rules model: up to 0.036)
         assert abs(body.position[0] - offsets[k]) < 1e-2
     before = dict(world.stats)
     world.run_until(5.0)
