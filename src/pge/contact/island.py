@@ -215,17 +215,6 @@ def _touching(gap, closing, reach, window):
 
 
 @njit(cache=True, inline="always")
-def _bounce(closing, e, pressing, rest_height, reach):
-    """The normal speed a point closing at ``closing`` leaves with, ``e closing``, if that
-    bounces higher than the rest height against the pressing acceleration; else 0 (it
-    stops closing: an inelastic impact)."""
-    bounce = e * closing
-    if closing > 0.0 and bounce * bounce > 2.0 * pressing * rest_height * reach:
-        return bounce
-    return 0.0
-
-
-@njit(cache=True, inline="always")
 def _arrival(gap, u, a):
     """The earliest time a gap ``gap > 0`` with normal speed ``u`` (positive: opening) and
     normal acceleration ``a`` closes, the earliest root of ``gap + u t + a t^2 / 2``
@@ -256,13 +245,18 @@ def _approach_acceleration(F, pairs, c, nx, ny):
 
 @njit(cache=True, inline="always")
 def _row_bounce(F, Q, rest_height, i, j, closing, reach):
-    """``_bounce`` for a row of bodies ``i`` and ``j``, with their elasticities and the
-    stronger of their free accelerations."""
+    """The normal speed a point of bodies ``i`` and ``j`` closing at ``closing`` leaves with,
+    ``e closing`` with their combined elasticity, if that bounces higher than the rest
+    height against the stronger of their free accelerations; else 0 (it stops closing: an
+    inelastic impact)."""
     if not closing > 0.0:
         return 0.0
     e = combine(F[i, L.ELASTICITY], F[j, L.ELASTICITY], Q[L.RULE])
     pressing = max(math.hypot(F[i, L.FREE_AX], F[i, L.FREE_AY]), math.hypot(F[j, L.FREE_AX], F[j, L.FREE_AY]))
-    return _bounce(closing, e, pressing, rest_height, reach)
+    bounce = e * closing
+    if bounce * bounce > 2.0 * pressing * rest_height * reach:
+        return bounce
+    return 0.0
 
 
 @njit(cache=True)

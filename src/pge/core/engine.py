@@ -216,6 +216,41 @@ def patch_collide(F, a, b, x1, y1, x2, y2, nx, ny, restitution, mu):
     return l1, l2, jt
 
 
+@njit(cache=True, inline="always")
+def _record_patch(out, x1, y1, x2, y2, l1, l2, jt):
+    """A face patch's ends and impulses into the loop's record (``Collision.patch``)."""
+    out[L.OUT_X1] = x1
+    out[L.OUT_Y1] = y1
+    out[L.OUT_X2] = x2
+    out[L.OUT_Y2] = y2
+    out[L.OUT_L1] = l1
+    out[L.OUT_L2] = l2
+    out[L.OUT_JT] = jt
+
+
+@njit(cache=True)
+def point_collide(F, a, b, rax, ray, rbx, rby, nx, ny, ux, uy, restitution, mu):
+    """The impact of ``a`` and ``b`` at one point (lever arms ``r_a``, ``r_b``, normal ``n``,
+    relative velocity ``u`` there, approaching): one exact impulse
+    (``pge.core.impulse.contact_impulse``), applied to ``a`` and (opposite) ``b``. Returns
+    its normal part (0 where neither body can be moved)."""
+    tx = -ny
+    ty = nx
+    ann, ant, att = contact_response(F, a, rax, ray, nx, ny, tx, ty)
+    bnn, bnt, btt = contact_response(F, b, rbx, rby, nx, ny, tx, ty)
+    knn = ann + bnn
+    if not knn > 0.0:
+        return 0.0
+    impulse, tangential = contact_impulse(
+        ux * nx + uy * ny, ux * tx + uy * ty, knn, ant + bnt, att + btt, restitution, mu
+    )
+    jx = impulse * nx + tangential * tx
+    jy = impulse * ny + tangential * ty
+    apply_impulse(F, a, jx, jy, rax, ray)
+    apply_impulse(F, b, -jx, -jy, rbx, rby)
+    return impulse
+
+
 @njit(cache=True)
 def joins(S, a, b, nx, ny, leaving):
     """Whether the contact of ``a`` and ``b`` (normal ``n`` from b to a), leaving at
@@ -251,7 +286,9 @@ def _pair_last_hit(F, I, a, b):
 def collide(S, a, b, feature, t):
     """The impact of ``a`` and ``b`` at ``t``: one exact impulse
     at the contact point (restitution, Coulomb friction, the energy guard of
-    ``pge.core.impulse``) on two free bodies; returns the normal impulse (0: a graze).
+    ``pge.core.impulse``: ``point_collide``), or where a face meets a face both its ends
+    together (``face_patch``, ``patch_collide``), on two free bodies; returns the normal
+    impulse (0: a graze).
 
     ``out`` gets the record and ``OUT_JOIN``: ``ABSORB`` when a body of an island takes part
     and the pair closes slower than a step can follow (its approach over a step below the
@@ -271,8 +308,6 @@ def collide(S, a, b, feature, t):
     orient(F, I, S[2], S[17], a, t)
     orient(F, I, S[2], S[17], b, t)
     px, py, nx, ny = contact_geometry(S, a, b, feature)
-    tx = -ny
-    ty = nx
     rax = px - F[a, L.X]
     ray = py - F[a, L.Y]
     rbx = px - F[b, L.X]
@@ -294,34 +329,17 @@ def collide(S, a, b, feature, t):
         and last != t
     )
     patch = False
-    if normal_speed < 0.0 and not absorb and I[a, L.KIND] != CIRCLE and I[b, L.KIND] != CIRCLE:
-        patch, x1, y1, x2, y2 = face_patch(S, a, b, nx, ny, reach)
-        if patch:
-            restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
-            mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
-            l1, l2, jt = patch_collide(F, a, b, x1, y1, x2, y2, nx, ny, restitution, mu)
-            impulse = l1 + l2
-            out[L.OUT_X1] = x1
-            out[L.OUT_Y1] = y1
-            out[L.OUT_X2] = x2
-            out[L.OUT_Y2] = y2
-            out[L.OUT_L1] = l1
-            out[L.OUT_L2] = l2
-            out[L.OUT_JT] = jt
-    if normal_speed < 0.0 and not absorb and not patch:
+    if normal_speed < 0.0 and not absorb:
         restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
         mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
-        ann, ant, att = contact_response(F, a, rax, ray, nx, ny, tx, ty)
-        bnn, bnt, btt = contact_response(F, b, rbx, rby, nx, ny, tx, ty)
-        knn = ann + bnn
-        if knn > 0.0:
-            impulse, tangential = contact_impulse(
-                normal_speed, ux * tx + uy * ty, knn, ant + bnt, att + btt, restitution, mu
-            )
-            jx = impulse * nx + tangential * tx
-            jy = impulse * ny + tangential * ty
-            apply_impulse(F, a, jx, jy, rax, ray)
-            apply_impulse(F, b, -jx, -jy, rbx, rby)
+        if I[a, L.KIND] != CIRCLE and I[b, L.KIND] != CIRCLE:
+            patch, x1, y1, x2, y2 = face_patch(S, a, b, nx, ny, reach)
+        if patch:
+            l1, l2, jt = patch_collide(F, a, b, x1, y1, x2, y2, nx, ny, restitution, mu)
+            impulse = l1 + l2
+            _record_patch(out, x1, y1, x2, y2, l1, l2, jt)
+        else:
+            impulse = point_collide(F, a, b, rax, ray, rbx, rby, nx, ny, ux, uy, restitution, mu)
     ux = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
     uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
     # A pair that collides again within one step of the islands and parts slowly (by less

@@ -39,6 +39,21 @@ def energy_change(jn, jt, un, ut, knn, knt, ktt):
     return jn * un + jt * ut + 0.5 * (knn * jn * jn + 2.0 * knt * jn * jt + ktt * jt * jt)
 
 
+@njit(cache=True, inline="always")
+def _pull_back(base, a, b):
+    """The energy guard's step: the largest ``s`` in [0, 1] with ``base + b s + a s^2 / 2 <= 0``,
+    the energy change along the segment from an impulse that takes energy out (``base <= 0``)
+    to one that gains (``a > 0``: convex), computed stably and shrunk by a few ulps so that
+    rounding cannot leave it just above zero."""
+    disc = b * b - 2.0 * a * base
+    root = math.sqrt(max(disc, 0.0))
+    if b > 0.0:
+        s = -2.0 * base / (b + root) if b + root > 0.0 else 0.0
+    else:
+        s = (root - b) / a
+    return min(max(s * (1.0 - 4.0 * 2.0**-52), 0.0), 1.0)
+
+
 @njit(cache=True)
 def contact_impulse(un, ut, knn, knt, ktt, restitution, mu):
     """Normal and tangential impulse ``(jn, jt)`` on body a for an approaching contact.
@@ -92,13 +107,7 @@ def contact_impulse(un, ut, knn, knt, ktt, restitution, mu):
     b = dn * un + dt * ut + knn * jn0 * dn + knt * jn0 * dt
     if a <= 0.0:
         return jn0, 0.0
-    disc = b * b - 2.0 * a * base
-    root = math.sqrt(max(disc, 0.0))
-    if b > 0.0:
-        s = -2.0 * base / (b + root) if b + root > 0.0 else 0.0
-    else:
-        s = (root - b) / a
-    s = min(max(s * (1.0 - 4.0 * 2.0**-52), 0.0), 1.0)
+    s = _pull_back(base, a, b)
     return jn0 + s * dn, s * dt
 
 
@@ -241,11 +250,5 @@ def patch_impulse(u1, u2, ut, k11, k12, k22, k1t, k2t, ktt, restitution, mu):
     )
     if a <= 0.0:
         return i1, i2, 0.0
-    disc = b * b - 2.0 * a * base
-    root = math.sqrt(max(disc, 0.0))
-    if b > 0.0:
-        s = -2.0 * base / (b + root) if b + root > 0.0 else 0.0
-    else:
-        s = (root - b) / a
-    s = min(max(s * (1.0 - 4.0 * 2.0**-52), 0.0), 1.0)
+    s = _pull_back(base, a, b)
     return i1 + s * d1, i2 + s * d2, s * dt
