@@ -75,8 +75,9 @@ def timed_step_island(clock):
         shorter = timed("step length", K._within_margins, F, members, now, margin, min(h, turned))
         if shorter < h:
             h = shorter
-            K._force_targets(rows, count, h)
             speed = K._speed_scale(F, members, now, h, pull)
+        timed("arcs", K._arcs, S, now, rows, pairs, count, h)
+        K._force_targets(rows, count, h)
         end = np.empty_like(now)
         for k in range(members.shape[0]):
             i = members[k]

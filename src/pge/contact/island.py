@@ -88,7 +88,10 @@ MA, IA, MB, IB = range(NCOLUMNS + 11, NCOLUMNS + 15)
 # friction (the midpoint of its two points, or its one point), the effective mass along the
 # tangent there, and its two points' normal coupling ``K12`` and ``DET = K11 K22 - K12^2``
 FAX, FAY, FBX, FBY, KF, K12, DET = range(NCOLUMNS + 15, NCOLUMNS + 22)
-NSOLVE = NCOLUMNS + 22
+# ... and what a turning body's arc adds to a point's separation at the step's end beyond the
+# straight-line motion of its contact point (``_arcs``)
+ARC = NCOLUMNS + 22
+NSOLVE = NCOLUMNS + 23
 # what an active set gave (``_active_set``)
 SET_SOLVED, SET_MOVED, SET_WRONG = range(3)
 # the warm-start key of a contact: (body a, body b, manifold key) in one integer
@@ -125,26 +128,135 @@ def _points(S, i, j, margin, rows, count):
     """Append the manifold of bodies ``i`` and ``j`` (normal from j to i)."""
     F = S[0]
     I = S[1]
-    OL = S[2]
-    xi = F[i, L.X]
-    yi = F[i, L.Y]
-    xj = F[j, L.X]
-    yj = F[j, L.Y]
+    return _points_at(F, I, S[2], i, F[i, L.X], F[i, L.Y], I[i, L.OUTLINE_START], j, F[j, L.X], F[j, L.Y],
+                      I[j, L.OUTLINE_START], margin, rows, count)
+
+
+@njit(cache=True)
+def _points_at(F, I, OL, i, xi, yi, si, j, xj, yj, sj, margin, rows, count):
+    """Append the manifold of bodies ``i`` at ``(xi, yi)`` and ``j`` at ``(xj, yj)`` (normal
+    from j to i), their outlines (polygons) the rows of ``OL`` from ``si`` and ``sj``."""
     if I[i, L.KIND] == CIRCLE:
         if I[j, L.KIND] == CIRCLE:
             return circle_circle_points(xi, yi, F[i, L.RADIUS], xj, yj, F[j, L.RADIUS], margin, rows, count)
-        return circle_polygon_points(
-            xi, yi, F[i, L.RADIUS], xj, yj, OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], False, margin, rows, count
-        )
+        return circle_polygon_points(xi, yi, F[i, L.RADIUS], xj, yj, OL, sj, I[j, L.OUTLINE_N], False, margin, rows,
+                                     count)
     if I[j, L.KIND] == CIRCLE:
-        return circle_polygon_points(
-            xj, yj, F[j, L.RADIUS], xi, yi, OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], True, margin, rows, count
-        )
+        return circle_polygon_points(xj, yj, F[j, L.RADIUS], xi, yi, OL, si, I[i, L.OUTLINE_N], True, margin, rows,
+                                     count)
     tolerance = FACE_HYSTERESIS * (F[i, L.REACH] + F[j, L.REACH])
-    return polygon_polygon_points(
-        xi, yi, OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], xj, yj, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N],
-        margin, tolerance, rows, count,
-    )
+    return polygon_polygon_points(xi, yi, OL, si, I[i, L.OUTLINE_N], xj, yj, sj, I[j, L.OUTLINE_N], margin, tolerance,
+                                  rows, count)
+
+
+@njit(cache=True)
+def _turned(F, I, OL, OB, i, spin, h, out, at):
+    """Polygon ``i``'s outline rows turned on by ``spin h`` from its angle now, written into
+    ``out`` from row ``at``; returns the row after them."""
+    n = I[i, L.OUTLINE_N]
+    start = I[i, L.OUTLINE_START]
+    angle = F[i, L.ORIENT] + spin * h
+    c = math.cos(angle)
+    s = math.sin(angle)
+    for k in range(n):
+        out[at + k, :] = OL[start + k, :]
+        x = OB[start + k, 0]
+        y = OB[start + k, 1]
+        nx = OB[start + k, 2]
+        ny = OB[start + k, 3]
+        out[at + k, 0] = c * x - s * y
+        out[at + k, 1] = s * x + c * y
+        out[at + k, 2] = c * nx - s * ny
+        out[at + k, 3] = s * nx + c * ny
+    return at + n
+
+
+@njit(cache=True)
+def _moved(F, I, OL, OB, now, rows, pairs, c, d, h, outline, end, into):
+    """For rows ``c`` to ``d - 1`` (one pair): what the pair's separation at each point,
+    found again from the bodies' outlines moved on for ``h`` at their velocities ``now``
+    and turned by their spins, adds to the straight-line motion of the point,
+    ``separation + h u``; into ``into[r - c]``, NaN where the point's features are not in the
+    moved manifold. Returns the outline scratch (grown if it had to be)."""
+    i = pairs[c, 2]
+    j = pairs[c, 3]
+    ka = pairs[c, 0]
+    kb = pairs[c, 1]
+    need = I[i, L.OUTLINE_N] + I[j, L.OUTLINE_N]
+    if need > outline.shape[0]:
+        outline = np.empty((need, OL.shape[1]))
+    at = 0
+    if I[i, L.KIND] != CIRCLE:
+        at = _turned(F, I, OL, OB, i, now[ka, 2], h, outline, 0)
+    if I[j, L.KIND] != CIRCLE:
+        _turned(F, I, OL, OB, j, now[kb, 2] if kb >= 0 else 0.0, h, outline, at)
+    xj = F[j, L.X]
+    yj = F[j, L.Y]
+    if kb >= 0:
+        xj += h * now[kb, 0]
+        yj += h * now[kb, 1]
+    found = _points_at(F, I, outline, i, F[i, L.X] + h * now[ka, 0], F[i, L.Y] + h * now[ka, 1], 0, j, xj, yj, at,
+                       math.inf, end, 0)
+    for r in range(c, d):
+        into[r - c] = math.nan
+        for q in range(found):
+            if end[q, KEY] == rows[r, KEY]:
+                ux, uy = _relative(now, pairs, rows, r)
+                into[r - c] = end[q, SEPARATION] - rows[r, SEPARATION] - h * (ux * rows[r, NX] + uy * rows[r, NY])
+                break
+    return outline
+
+
+@njit(cache=True)
+def _arcs(S, now, rows, pairs, count, h):
+    """Each row's ``ARC``: how much sooner the point's gap closes over the step than the
+    straight-line motion of its contact point says, where a polygon of the pair turns. The
+    step's conditions are linear in the points' speeds, so they hold the points to straight
+    lines; a turning polygon's corners move on arcs and its faces turn under a neighbour,
+    and the step's end would leave an overlap of about ``(spin h)^2 / 2`` of a reach for the
+    next steps to push out. With the arc in the push-out's end separations (``_push_out``),
+    the end positions are held apart to third order in ``h``. (Not in the force stage's
+    targets: there the step's force would push the start's contact point apart at
+    ``-arc / h``, work that a rigid contact does not do.)
+
+    The arc is the second-order term, in ``h``, of the separation found again from the
+    outlines moved on at the velocities now and turned by the spins, less the straight line
+    (``_moved``, for ``h`` and ``h / 2``: ``2 (k(h) - 2 k(h / 2))``). The first-order part of
+    that difference is not taken: at a point clipped to a face's end (not a point of either
+    body) it is the point sliding along a face tilted against the other, at the tangential
+    speed of now, which the step's friction changes. Only an arc that closes the gap counts:
+    the gap over the step is then concave in time, least at the step's ends, so a step that
+    holds both ends does not overlap between them; an arc that opens it would let the step
+    close the gap by as much and dip into the other body by a quarter of it midway. Zero for
+    a pair where no polygon turns (the straight lines are then exact to second order) and
+    where the point's features change within the step."""
+    F = S[0]
+    I = S[1]
+    OL = S[2]
+    OB = S[17]
+    outline = np.empty((16, OL.shape[1]))
+    end = np.empty((4, NCOLUMNS))
+    full = np.empty(2)
+    half = np.empty(2)
+    c = 0
+    while c < count:
+        i = pairs[c, 2]
+        j = pairs[c, 3]
+        d = c + 1
+        while d < count and pairs[d, 2] == i and pairs[d, 3] == j:
+            d += 1
+        for r in range(c, d):
+            rows[r, ARC] = 0.0
+        wi = now[pairs[c, 0], 2]
+        wj = now[pairs[c, 1], 2] if pairs[c, 1] >= 0 else 0.0
+        if (I[i, L.KIND] != CIRCLE and wi != 0.0) or (I[j, L.KIND] != CIRCLE and wj != 0.0):
+            outline = _moved(F, I, OL, OB, now, rows, pairs, c, d, h, outline, end, full)
+            outline = _moved(F, I, OL, OB, now, rows, pairs, c, d, 0.5 * h, outline, end, half)
+            for r in range(c, d):
+                arc = 2.0 * (full[r - c] - 2.0 * half[r - c])
+                if arc < 0.0:  # NaN (a feature changed) compares false
+                    rows[r, ARC] = arc
+        c = d
 
 
 @njit(cache=True)
@@ -319,7 +431,6 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
                 rows[c, LAMBDA_N] = warm_impulses[at, 0]
                 rows[c, LAMBDA_T] = warm_impulses[at, 1]
     _pair_constants(rows, pairs, count)
-    _force_targets(rows, count, h)
     return keys
 
 
@@ -1348,9 +1459,13 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
         wx, wy = _relative(end, pairs, rows, c)
         moved = 0.5 * h * ((ux + wx) * rows[c, NX] + (uy + wy) * rows[c, NY])
         left = rows[c, SEPARATION] + moved
-        need[c] = -2.0 * PUSH_RATE * left / nominal if left < 0.0 else -2.0 * left / h
+        arc = rows[c, ARC]
+        if left < 0.0:
+            need[c] = -2.0 * (PUSH_RATE * left / nominal + arc / h)
+        else:
+            need[c] = -2.0 * (left + arc) / h
         reach = min(F[pairs[c, 2], L.REACH], F[pairs[c, 3], L.REACH])
-        if left < -PUSH_SLOP * reach:
+        if left + arc < -PUSH_SLOP * reach:
             largest = max(largest, need[c])
     if not largest > 0.0:
         return lift, 0
@@ -1527,8 +1642,9 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     shorter = _within_margins(F, members, now, margin, min(h, turned))
     if shorter < h:
         h = shorter
-        _force_targets(rows, count, h)
         speed = _speed_scale(F, members, now, h, pull)
+    _arcs(S, now, rows, pairs, count, h)
+    _force_targets(rows, count, h)
     end = np.empty_like(now)
     for k in range(members.shape[0]):
         i = members[k]
