@@ -40,8 +40,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from pge._jit_cache import njit
 from pge.contact.manifold import (
     KEY,
     NCOLUMNS,
@@ -56,7 +56,7 @@ from pge.contact.manifold import (
 )
 from pge.core import layout as L
 from pge.core.response import combine
-from pge.core.engine import touch
+from pge.core.engine import touch_one
 from pge.core.grid import gather
 from pge.core.motion import advance, orient
 from pge.numerics.lcp import lemke
@@ -1369,7 +1369,7 @@ def _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed):
             fastest = math.inf
         if labels[k] < 0:
             I[i, L.ISLAND] = -1
-        touch(S, i)
+        touch_one(S, i)
     deepest = 0.0
     for c in range(count):
         if rows[c, SEPARATION] < 0.0:

@@ -12,8 +12,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from pge._jit_cache import njit
 from pge.toi.circle_polygon import closest_feature
 
 _INF = math.inf

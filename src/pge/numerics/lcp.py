@@ -24,8 +24,8 @@ Leaf module: imports nothing from pge.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from pge._jit_cache import njit
 __all__ = ["lemke"]
 
 #: pivot entries below this times the largest entry of their column count as zero
