@@ -172,12 +172,10 @@ def _turned(F, I, OL, OB, i, spin, h, out, at):
 
 
 @njit(cache=True)
-def _moved(F, I, OL, OB, now, rows, pairs, c, d, h, outline, end, into):
-    """For rows ``c`` to ``d - 1`` (one pair): what the pair's separation at each point,
-    found again from the bodies' outlines moved on for ``h`` at their velocities ``now``
-    and turned by their spins, adds to the straight-line motion of the point,
-    ``separation + h u``; into ``into[r - c]``, NaN where the point's features are not in the
-    moved manifold. Returns the outline scratch (grown if it had to be)."""
+def _moved(F, I, OL, OB, now, pairs, c, h, outline, out):
+    """The manifold of row ``c``'s pair found again with the bodies' outlines moved on for
+    ``h`` at their velocities ``now`` and turned by their spins, into ``out``; returns the
+    number of points and the outline scratch (grown if it had to be)."""
     i = pairs[c, 2]
     j = pairs[c, 3]
     ka = pairs[c, 0]
@@ -196,48 +194,89 @@ def _moved(F, I, OL, OB, now, rows, pairs, c, d, h, outline, end, into):
         xj += h * now[kb, 0]
         yj += h * now[kb, 1]
     found = _points_at(F, I, outline, i, F[i, L.X] + h * now[ka, 0], F[i, L.Y] + h * now[ka, 1], 0, j, xj, yj, at,
-                       math.inf, end, 0)
-    for r in range(c, d):
-        into[r - c] = math.nan
-        for q in range(found):
-            if end[q, KEY] == rows[r, KEY]:
-                ux, uy = _relative(now, pairs, rows, r)
-                into[r - c] = end[q, SEPARATION] - rows[r, SEPARATION] - h * (ux * rows[r, NX] + uy * rows[r, NY])
-                break
-    return outline
+                       math.inf, out, 0)
+    return found, outline
+
+
+@njit(cache=True, inline="always")
+def _match(out, found, key):
+    """The index of the point with ``key`` among the first ``found`` of ``out``, or -1."""
+    for q in range(found):
+        if out[q, KEY] == key:
+            return q
+    return -1
+
+
+@njit(cache=True)
+def _to_midstep(F, now, rows, pairs, r, point, h):
+    """Move row ``r``'s contact point, normal and lever arms to where the contact is at
+    mid-step (``point``, a row of the manifold moved on by ``h / 2``), with its bodies'
+    reference points moved on as far; its effective masses follow."""
+    ka = pairs[r, 0]
+    kb = pairs[r, 1]
+    i = pairs[r, 2]
+    j = pairs[r, 3]
+    px = point[PX]
+    py = point[PY]
+    nx = rows[r, NX]
+    ny = rows[r, NY]
+    rax = px - (F[i, L.X] + 0.5 * h * now[ka, 0])
+    ray = py - (F[i, L.Y] + 0.5 * h * now[ka, 1])
+    rbx = px - F[j, L.X]
+    rby = py - F[j, L.Y]
+    if kb >= 0:
+        rbx -= 0.5 * h * now[kb, 0]
+        rby -= 0.5 * h * now[kb, 1]
+    rows[r, PX] = px
+    rows[r, PY] = py
+    rows[r, RAX] = rax
+    rows[r, RAY] = ray
+    rows[r, RBX] = rbx
+    rows[r, RBY] = rby
+    ran = rax * ny - ray * nx
+    rbn = rbx * ny - rby * nx
+    rat = rax * nx + ray * ny
+    rbt = rbx * nx + rby * ny
+    rows[r, KN] = rows[r, MA] + rows[r, MB] + rows[r, IA] * ran * ran + rows[r, IB] * rbn * rbn
+    rows[r, KT] = rows[r, MA] + rows[r, MB] + rows[r, IA] * rat * rat + rows[r, IB] * rbt * rbt
 
 
 @njit(cache=True)
 def _arcs(S, now, rows, pairs, count, h):
-    """Each row's ``ARC``: how much sooner the point's gap closes over the step than the
-    straight-line motion of its contact point says, where a polygon of the pair turns. The
-    step's conditions are linear in the points' speeds, so they hold the points to straight
-    lines; a turning polygon's corners move on arcs and its faces turn under a neighbour,
-    and the step's end would leave an overlap of about ``(spin h)^2 / 2`` of a reach for the
-    next steps to push out. With the arc in the push-out's end separations (``_push_out``),
-    the end positions are held apart to third order in ``h``. (Not in the force stage's
-    targets: there the step's force would push the start's contact point apart at
-    ``-arc / h``, work that a rigid contact does not do.)
+    """Where a polygon of a pair turns, the step's rows of that pair act where the contact
+    is at *mid-step*, and each row's ``ARC`` is what its straight line still misses.
 
-    The arc is the second-order term, in ``h``, of the separation found again from the
-    outlines moved on at the velocities now and turned by the spins, less the straight line
-    (``_moved``, for ``h`` and ``h / 2``: ``2 (k(h) - 2 k(h / 2))``). The first-order part of
-    that difference is not taken: at a point clipped to a face's end (not a point of either
-    body) it is the point sliding along a face tilted against the other, at the tangential
-    speed of now, which the step's friction changes. Only an arc that closes the gap counts:
-    the gap over the step is then concave in time, least at the step's ends, so a step that
-    holds both ends does not overlap between them; an arc that opens it would let the step
-    close the gap by as much and dip into the other body by a quarter of it midway. Zero for
-    a pair where no polygon turns (the straight lines are then exact to second order) and
-    where the point's features change within the step."""
+    The step's conditions are linear in the points' speeds: a row's separation at the end is
+    its separation now plus ``h`` times the mean normal speed of its contact point, whose
+    lever arms and normal are fixed over the step. A turning polygon's corners move on arcs
+    and its faces turn under a neighbour, and a rolling contact's point moves along the face:
+    taken where the contact is now, the straight line misses the end separation by about
+    ``(spin h)^2 / 2`` of a reach, and the step's normal impulse has the lever arm of the
+    start, where the true force acts on average half the contact's travel further on. Taken
+    where the contact is at mid-step (the pair's manifold found again with the outlines
+    moved on by ``h / 2`` at the velocities now and turned by the spins: ``_to_midstep``),
+    the straight line is the midpoint rule, right to second order, and the impulse's work is
+    the mean normal speed there, zero for a holding contact: a body rolling or rocking on a
+    support gains no energy from the step.
+
+    ``ARC`` is the rest: the second-order part, in ``h``, of the separation found again with
+    the outlines moved on by ``h`` and by ``h / 2``, less the start's straight line
+    (``2 (k(h) - 2 k(h / 2))``), less what the mid-step point's straight line adds to the
+    start's, where it closes the gap (third order where the midpoint rule holds); the
+    push-out takes it (``_push_out``). Not its first-order part: at a point clipped to a face's end (not a point
+    of either body) that is the point sliding along a face tilted against the other at the
+    tangential speed of now, which the step's friction changes. Not where it opens the gap:
+    the gap over the step would then dip between its ends. Zero, and the rows left where the
+    contact is now, for a pair where no polygon turns (the straight lines are then exact) and
+    for a point whose features change within the step (its key is not in the moved manifold)."""
     F = S[0]
     I = S[1]
     OL = S[2]
     OB = S[17]
     outline = np.empty((16, OL.shape[1]))
-    end = np.empty((4, NCOLUMNS))
-    full = np.empty(2)
-    half = np.empty(2)
+    half = np.empty((4, NCOLUMNS))
+    full = np.empty((4, NCOLUMNS))
+    moved = False
     c = 0
     while c < count:
         i = pairs[c, 2]
@@ -250,13 +289,29 @@ def _arcs(S, now, rows, pairs, count, h):
         wi = now[pairs[c, 0], 2]
         wj = now[pairs[c, 1], 2] if pairs[c, 1] >= 0 else 0.0
         if (I[i, L.KIND] != CIRCLE and wi != 0.0) or (I[j, L.KIND] != CIRCLE and wj != 0.0):
-            outline = _moved(F, I, OL, OB, now, rows, pairs, c, d, h, outline, end, full)
-            outline = _moved(F, I, OL, OB, now, rows, pairs, c, d, 0.5 * h, outline, end, half)
+            at_half, outline = _moved(F, I, OL, OB, now, pairs, c, 0.5 * h, outline, half)
+            at_full, outline = _moved(F, I, OL, OB, now, pairs, c, h, outline, full)
             for r in range(c, d):
-                arc = 2.0 * (full[r - c] - 2.0 * half[r - c])
-                if arc < 0.0:  # NaN (a feature changed) compares false
+                q = _match(half, at_half, rows[r, KEY])
+                e = _match(full, at_full, rows[r, KEY])
+                if q < 0 or e < 0:
+                    continue
+                ux, uy = _relative(now, pairs, rows, r)
+                start = ux * rows[r, NX] + uy * rows[r, NY]
+                k_full = full[e, SEPARATION] - rows[r, SEPARATION] - h * start
+                k_half = half[q, SEPARATION] - rows[r, SEPARATION] - 0.5 * h * start
+                _to_midstep(F, now, rows, pairs, r, half[q], h)
+                moved = True
+                ux, uy = _relative(now, pairs, rows, r)
+                midstep = ux * rows[r, NX] + uy * rows[r, NY]
+                # the second-order part of the end separation, less what the mid-step
+                # point's straight line already takes
+                arc = 2.0 * (k_full - 2.0 * k_half) - h * (midstep - start)
+                if arc < 0.0:
                     rows[r, ARC] = arc
         c = d
+    if moved:
+        _pair_constants(rows, pairs, count)
 
 
 @njit(cache=True)
