@@ -76,7 +76,7 @@ def timed_step_island(clock):
         if shorter < h:
             h = shorter
             speed = K._speed_scale(F, members, now, h, pull)
-        timed("arcs", K._arcs, S, now, rows, pairs, count, h)
+        timed("mid-step rows", K._midstep_rows, S, now, rows, pairs, count, h)
         K._force_targets(rows, count, h)
         end = np.empty_like(now)
         for k in range(members.shape[0]):

@@ -89,7 +89,7 @@ MA, IA, MB, IB = range(NCOLUMNS + 11, NCOLUMNS + 15)
 # tangent there, and its two points' normal coupling ``K12`` and ``DET = K11 K22 - K12^2``
 FAX, FAY, FBX, FBY, KF, K12, DET = range(NCOLUMNS + 15, NCOLUMNS + 22)
 # ... and what a turning body's arc adds to a point's separation at the step's end beyond the
-# straight-line motion of its contact point (``_arcs``)
+# straight-line motion of its contact point where it is at mid-step (``_midstep_rows``)
 ARC = NCOLUMNS + 22
 NSOLVE = NCOLUMNS + 23
 # what an active set gave (``_active_set``)
@@ -242,7 +242,7 @@ def _to_midstep(F, now, rows, pairs, r, point, h):
 
 
 @njit(cache=True)
-def _arcs(S, now, rows, pairs, count, h):
+def _midstep_rows(S, now, rows, pairs, count, h):
     """Where a polygon of a pair turns, the step's rows of that pair act where the contact
     is at *mid-step*, and each row's ``ARC`` is what its straight line still misses.
 
@@ -1698,7 +1698,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     if shorter < h:
         h = shorter
         speed = _speed_scale(F, members, now, h, pull)
-    _arcs(S, now, rows, pairs, count, h)
+    _midstep_rows(S, now, rows, pairs, count, h)
     _force_targets(rows, count, h)
     end = np.empty_like(now)
     for k in range(members.shape[0]):
