@@ -218,8 +218,6 @@ def _to_midstep(F, now, rows, pairs, r, point, h):
     j = pairs[r, 3]
     px = point[PX]
     py = point[PY]
-    nx = rows[r, NX]
-    ny = rows[r, NY]
     rax = px - (F[i, L.X] + 0.5 * h * now[ka, 0])
     ray = py - (F[i, L.Y] + 0.5 * h * now[ka, 1])
     rbx = px - F[j, L.X]
@@ -229,6 +227,15 @@ def _to_midstep(F, now, rows, pairs, r, point, h):
         rby -= 0.5 * h * now[kb, 1]
     rows[r, PX] = px
     rows[r, PY] = py
+    _lever_arms(rows, r, rax, ray, rbx, rby)
+
+
+@njit(cache=True, inline="always")
+def _lever_arms(rows, r, rax, ray, rbx, rby):
+    """Set row ``r``'s lever arms and, from them, its normal's and tangent's effective masses
+    (its normal and its bodies' inverse masses and inertias already set)."""
+    nx = rows[r, NX]
+    ny = rows[r, NY]
     rows[r, RAX] = rax
     rows[r, RAY] = ray
     rows[r, RBX] = rbx
@@ -443,30 +450,15 @@ def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
         py = rows[c, PY]
         nx = rows[c, NX]
         ny = rows[c, NY]
-        tx = -ny
-        ty = nx
         rax = px - F[i, L.X]
         ray = py - F[i, L.Y]
         rbx = px - F[j, L.X]
         rby = py - F[j, L.Y]
-        rows[c, RAX] = rax
-        rows[c, RAY] = ray
-        rows[c, RBX] = rbx
-        rows[c, RBY] = rby
-        ran = rax * ny - ray * nx
-        rbn = rbx * ny - rby * nx
-        rat = rax * ty - ray * tx
-        rbt = rbx * ty - rby * tx
-        ma = F[i, L.INV_MASS]
-        mb = F[j, L.INV_MASS]
-        ia = F[i, L.INV_INERTIA]
-        ib = F[j, L.INV_INERTIA]
-        rows[c, KN] = ma + mb + ia * ran * ran + ib * rbn * rbn
-        rows[c, KT] = ma + mb + ia * rat * rat + ib * rbt * rbt
-        rows[c, MA] = ma
-        rows[c, IA] = ia
-        rows[c, MB] = mb
-        rows[c, IB] = ib
+        rows[c, MA] = F[i, L.INV_MASS]
+        rows[c, IA] = F[i, L.INV_INERTIA]
+        rows[c, MB] = F[j, L.INV_MASS]
+        rows[c, IB] = F[j, L.INV_INERTIA]
+        _lever_arms(rows, c, rax, ray, rbx, rby)
         rows[c, MU] = combine(F[i, L.FRICTION], F[j, L.FRICTION], Q[L.FRICTION_RULE])
         separation = rows[c, SEPARATION]
         reach = min(F[i, L.REACH], F[j, L.REACH])
