@@ -209,9 +209,9 @@ def _match(out, found, key):
 
 @njit(cache=True)
 def _to_midstep(F, now, rows, pairs, r, point, h):
-    """Move row ``r``'s contact point, normal and lever arms to where the contact is at
-    mid-step (``point``, a row of the manifold moved on by ``h / 2``), with its bodies'
-    reference points moved on as far; its effective masses follow."""
+    """Move row ``r``'s contact point and lever arms (not its normal) to where the contact
+    is at mid-step (``point``, a row of the manifold moved on by ``h / 2``), with its
+    bodies' reference points moved on as far; its effective masses follow."""
     ka = pairs[r, 0]
     kb = pairs[r, 1]
     i = pairs[r, 2]
@@ -270,9 +270,9 @@ def _midstep_rows(S, now, rows, pairs, count, h):
     the outlines moved on by ``h`` and by ``h / 2``, less the start's straight line
     (``2 (k(h) - 2 k(h / 2))``), less what the mid-step point's straight line adds to the
     start's, where it closes the gap (third order where the midpoint rule holds); the
-    push-out takes it (``_push_out``). Not its first-order part: at a point clipped to a face's end (not a point
-    of either body) that is the point sliding along a face tilted against the other at the
-    tangential speed of now, which the step's friction changes. Not where it opens the gap:
+    push-out takes it (``_push_out``). Not its first-order part: at a point clipped to a
+    face's end (not a point of either body) that is the point sliding along a face tilted
+    against the other at the tangential speed of now, which the step's friction changes. Not where it opens the gap:
     the gap over the step would then dip between its ends. Zero, and the rows left where the
     contact is now, for a pair where no polygon turns (the straight lines are then exact) and
     for a point whose features change within the step (its key is not in the moved manifold)."""
@@ -1434,9 +1434,9 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     ``IMPACT`` targets, from zero impulses, but finished by Lemke's method only for at most
     ``IMPACT_LCP_LIMIT`` unknowns: where the active sets fail on a bigger problem, the
     sweeps stop after ``IMPACT_ITERATIONS``, and the little approach they leave is the
-    force stage's to stop. The rows' targets and
-    warm-start impulses are left as they were. Returns the number of sweeps and each
-    point's normal impulse."""
+    force stage's to stop. The rows' warm-start impulses are left as they were (their
+    ``TARGET`` is the impact stage's scratch: the force stage sets it afterwards,
+    ``_force_targets``). Returns the number of sweeps and each point's normal impulse."""
     struck = np.zeros(count)
     if count == 0:
         return 0, struck
@@ -1450,7 +1450,6 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
         return 0, struck
     before = now.copy()
     warm = rows[:count, LAMBDA_N:LAMBDA_T + 1].copy()
-    forces = rows[:count, TARGET].copy()
     rows[:count, TARGET] = rows[:count, IMPACT]
     rows[:count, LAMBDA_N] = 0.0
     rows[:count, LAMBDA_T] = 0.0
@@ -1461,7 +1460,6 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
             now[k, q] = before[k, q] + scale * (now[k, q] - before[k, q])
     for c in range(count):
         struck[c] = scale * rows[c, LAMBDA_N]
-    rows[:count, TARGET] = forces
     rows[:count, LAMBDA_N:LAMBDA_T + 1] = warm
     return sweeps, struck
 
@@ -1494,9 +1492,11 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
     at least ``PUSH_RATE`` of ``-e`` per ``nominal`` step length (the island's step before
     any cut for a bounce: ``h / nominal`` of that in a step cut shorter, so that the lift,
     a speed, stays within ``2 PUSH_RATE |e| / nominal``) where ``e < 0``, closed by at most
-    ``e`` where ``e >= 0``. Nothing is solved unless some point overlaps by more than
-    ``PUSH_SLOP`` of its pair's smaller reach. Returns the lifts (all zero then) and the
-    sweeps taken."""
+    ``e`` where ``e >= 0``. A point's ``ARC`` (``_midstep_rows``: what a turning body's
+    contact adds to the straight line's end separation) is an overlap the step would make,
+    not one it found: all of it is moved out at this step. Nothing is solved unless some
+    point would overlap by more than ``PUSH_SLOP`` of its pair's smaller reach. Returns the
+    lifts (all zero then) and the sweeps taken."""
     m = now.shape[0]
     lift = np.zeros((m, 3))
     need = np.empty(count)
