@@ -56,20 +56,21 @@ def timed_step_island(clock):
             pull = max(pull, math.hypot(F[members[k], L.FREE_AX], F[members[k], L.FREE_AY]))
         down_x = F[members[0], L.FREE_AX]
         down_y = F[members[0], L.FREE_AY]
-        natural = timed("step length", K._turn_limit, S, members, now, h)
+        shortest = min(K.SHORTEST_STEP, (count + 1) / K.ROW_BUDGET) * h
+        natural = timed("step length", K._turn_limit, S, members, now, h, shortest)
         h = min(timed("step length", K._until_contact, S, now, rows, pairs, count, h,
-                      np.full(count, K.BOUNCE_WINDOW)),
+                      np.full(count, K.BOUNCE_WINDOW), shortest),
                 natural)
         keys = timed("prepare", K._prepare, S, rows, pairs, count, h, warm_keys, warm_impulses)
         speed = K._speed_scale(F, members, now, h, pull)
         shorter = timed("after bounces", K._after_bounces, S, members, now, rows, pairs, count, h, speed, down_x,
-                        down_y)
+                        down_y, min(shortest, h))
         if shorter < h:
             h = shorter
             keys = timed("prepare", K._prepare, S, rows, pairs, count, h, warm_keys, warm_impulses)
             speed = K._speed_scale(F, members, now, h, pull)
         sweeps, struck = timed("impacts", K._impacts, F, members, now, rows, pairs, count, speed, down_x, down_y)
-        turned = timed("step length", K._turn_limit, S, members, now, h)
+        turned = timed("step length", K._turn_limit, S, members, now, h, min(shortest, h))
         if turned < h:
             natural = min(natural, turned)
         shorter = timed("step length", K._within_margins, F, members, now, margin, min(h, turned))

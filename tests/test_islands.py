@@ -15,7 +15,8 @@ import pytest
 
 from pge import World
 from pge.core import layout as L
-from pge.core.tuning import ISLAND_STEP
+from pge.contact import islands as islands_module
+from pge.core.tuning import ISLAND_STEP, ROW_BUDGET, SHORTEST_STEP
 from strategies import closed_box
 
 G = 9.81
@@ -808,3 +809,52 @@ def test_a_plank_rocking_on_a_cylinder_never_sinks_into_it_and_gains_no_energy(s
     assert max(angles) == pytest.approx(-min(angles), rel=0.1)
     assert 0.8 * spin / 8.1 < max(angles) < 1.3 * spin / 8.1
     assert abs(plank.position[0] - 0.5) < 0.01
+
+
+def spinning_pile(n, spin, seed=1):
+    """``n`` circles and regular polygons (radius 0.02) dropped in rows into a walled floor
+    with friction, each spinning at up to ``spin`` rad/s."""
+    rng = np.random.default_rng(seed)
+    world = World(gravity=(0.0, -9.81), elasticity=0.5)
+    world.add_box(-0.05, -0.05, 1.1, 0.05, fixed=True, friction=0.5)
+    world.add_box(-0.05, 0.0, 0.05, 1.0, fixed=True, friction=0.5)
+    world.add_box(1.0, 0.0, 0.05, 1.0, fixed=True, friction=0.5)
+    r = 0.02
+    columns = int(1.0 / (3.0 * r))
+    for k in range(n):
+        x = 2.0 * r + (k % columns) * 3.0 * r + rng.uniform(-0.3, 0.3) * r
+        y = 2.0 * r + (k // columns) * 3.0 * r
+        options = {"mass": 1.0, "angular_velocity": spin * rng.uniform(-1.0, 1.0), "friction": 0.5}
+        if k % 2 == 0:
+            world.add_circle((x, y), r, **options)
+            continue
+        sides = 3 + (k // 2) % 4
+        phase = rng.uniform(0.0, 2.0 * math.pi)
+        world.add_polygon([(x + r * math.cos(phase + 2.0 * math.pi * j / sides),
+                            y + r * math.sin(phase + 2.0 * math.pi * j / sides)) for j in range(sides)], **options)
+    return world
+
+
+def test_an_islands_steps_are_never_shorter_than_its_rows_allow(monkeypatch):
+    """Bounded cost: an island's step is cut short for a bouncing arrival or a fast-turning
+    polygon, but never below ``min(SHORTEST_STEP, (rows + 1) / ROW_BUDGET)`` of the island's
+    step, so that its cut steps cost at most about ``ROW_BUDGET`` contact rows per
+    ``ISLAND_STEP`` however many of its bodies bounce or spin (before the floor, a pile of 60
+    spinning bodies took steps of a thousandth of ``ISLAND_STEP``, and a 1,000-body one,
+    benchmarks/README.md, of a five-hundredth at every step). The floor binds here."""
+    steps = []
+    compiled = islands_module.step_island
+
+    def recorded(S, members, local, h, t, warm_keys, warm_impulses):
+        out = compiled(S, members, local, h, t, warm_keys, warm_impulses)
+        steps.append((members.shape[0], out[0].shape[0], out[6] / h))
+        return out
+
+    monkeypatch.setattr(islands_module, "step_island", recorded)
+    world = spinning_pile(60, 50.0)
+    world.run_until(0.5)
+    big = [(rows, part) for size, rows, part in steps if size >= 30]
+    assert len(big) > 100
+    floors = [min(SHORTEST_STEP, (rows + 1) / ROW_BUDGET) for rows, _ in big]
+    assert all(part >= floor * (1.0 - 1e-12) for (_, part), floor in zip(big, floors))
+    assert any(part <= 1.5 * floor for (_, part), floor in zip(big, floors))  # the floor binds

@@ -72,6 +72,8 @@ from pge.core.tuning import (
     MAX_TURN,
     PUSH_RATE,
     PUSH_SLOP,
+    ROW_BUDGET,
+    SHORTEST_REACH_STEP,
     SET_TRIES,
     SHORTEST_STEP,
     SIMULTANEOUS,
@@ -1526,7 +1528,7 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
 
 
 @njit(cache=True)
-def _until_contact(S, now, rows, pairs, count, h, early):
+def _until_contact(S, now, rows, pairs, count, h, early, shortest):
     """The step's length: ``h``, or less where a point with a gap (wider than ``TOUCHING``
     of its pair's reach) would close it sooner, with the velocities now and the accelerations
     the last step left (``_approach_acceleration``; the earliest root of
@@ -1538,7 +1540,7 @@ def _until_contact(S, now, rows, pairs, count, h, early):
     (``BOUNCE_WINDOW``, or 0 for a row the step will not bounce): it bounces now if it closes fast enough now, else it arrives
     too slow to bounce but for what the window's acceleration adds, and its gap's bound
     stops it. So with the window a step is cut no shorter than it; never below
-    ``SHORTEST_STEP`` of ``h``, so that time always moves on."""
+    ``shortest``, the island's floor (``step_island``)."""
     F = S[0]
     Q = S[4]
     rest_height = S[3][L.REST_HEIGHT]
@@ -1568,18 +1570,18 @@ def _until_contact(S, now, rows, pairs, count, h, early):
             continue
         if _row_bounce(F, Q, rest_height, i, j, -(u + a * when), reach) > 0.0:
             length = when
-    return max(length, SHORTEST_STEP * h)
+    return max(length, shortest)
 
 
 @njit(cache=True)
-def _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y):
+def _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y, shortest):
     """The step's length once its bounces are taken: a bounce may send a body towards a gap
     that then closes within the step (a ball between two walls). Its impact comes at that
     instant, so that the impact stage takes it with its restitution too; across it, the
     gap's speculative bound would stop the body there, an inelastic impact. The bounces are
     tried on copies, without the gaps' bounds (which would hide the speed they give). The
     bounce window does not apply to a point whose speed they changed: this step's impact
-    stage does not bounce it."""
+    stage does not bounce it. Never below ``shortest`` (the island's floor)."""
     bounces = False
     for c in range(count):
         bounces = bounces or rows[c, IMPACT] > 0.0
@@ -1597,13 +1599,14 @@ def _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y
         wx, wy = _relative(moved, pairs, rows, c)
         if ux != wx or uy != wy:
             early[c] = 0.0
-    return _until_contact(S, moved, trial, pairs, count, h, early)
+    return _until_contact(S, moved, trial, pairs, count, h, early, shortest)
 
 
 @njit(cache=True)
-def _turn_limit(S, members, now, h):
+def _turn_limit(S, members, now, h, shortest):
     """``h``, or less where a polygon turns faster than ``MAX_TURN`` a step (a circle's
-    spin does not move its outline); at least ``SHORTEST_STEP`` of ``h``."""
+    spin does not move its outline); at least ``shortest`` (the island's floor,
+    ``step_island``), so that its steps per second are bounded whatever its spins."""
     I = S[1]
     fastest = 0.0
     for k in range(members.shape[0]):
@@ -1611,7 +1614,7 @@ def _turn_limit(S, members, now, h):
             fastest = max(fastest, abs(now[k, 2]))
     if fastest * h <= MAX_TURN:
         return h
-    return max(MAX_TURN / fastest, SHORTEST_STEP * h)
+    return min(max(MAX_TURN / fastest, shortest), h)
 
 
 @njit(cache=True)
@@ -1619,7 +1622,8 @@ def _within_margins(F, members, now, margin, h):
     """``h``, or less where a body moving at its velocities ``now`` (after the impacts) would
     travel within the step further than the manifold looked round it (its ``margin``, which
     ``_start`` found for the velocities before them, plus ``CONTACT_MARGIN`` of its reach, as
-    in ``_collect``); at least ``SHORTEST_STEP`` of ``h``."""
+    in ``_collect``); at least ``SHORTEST_REACH_STEP`` of ``h`` (soundness: not the island's
+    floor)."""
     length = h
     for k in range(members.shape[0]):
         i = members[k]
@@ -1631,7 +1635,7 @@ def _within_margins(F, members, now, margin, h):
             # over a step t <= h the travel is at most t (|v| + |w| reach + 5/8 h |a|)
             rate = math.hypot(now[k, 0], now[k, 1]) + abs(now[k, 2]) * F[i, L.REACH] + 0.625 * h * math.hypot(ax, ay)
             length = min(length, reach / rate)
-    return max(length, SHORTEST_STEP * h)
+    return max(length, SHORTEST_REACH_STEP * h)
 
 
 @njit(cache=True, inline="always")
@@ -1670,11 +1674,14 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         pull = max(pull, math.hypot(F[members[k], L.FREE_AX], F[members[k], L.FREE_AY]))
     down_x = F[members[0], L.FREE_AX]
     down_y = F[members[0], L.FREE_AY]
-    natural = _turn_limit(S, members, now, h)
-    h = min(_until_contact(S, now, rows, pairs, count, h, np.full(count, BOUNCE_WINDOW)), natural)
+    # The island's floor: no bounce or spin cuts its step shorter, so that a cut step (which
+    # solves all of it) comes at most about ROW_BUDGET rows per h, whatever its bodies do.
+    shortest = min(SHORTEST_STEP, (count + 1) / ROW_BUDGET) * h
+    natural = _turn_limit(S, members, now, h, shortest)
+    h = min(_until_contact(S, now, rows, pairs, count, h, np.full(count, BOUNCE_WINDOW), shortest), natural)
     keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
     speed = _speed_scale(F, members, now, h, pull)
-    shorter = _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y)
+    shorter = _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y, min(shortest, h))
     if shorter < h:
         h = shorter
         keys = _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses)
@@ -1683,7 +1690,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     # The impacts may have set a polygon turning faster than the step was cut for, or sent a
     # body further than the manifold looked (a body landing on another drives it towards a
     # floor the step did not collect): the step then ends first.
-    turned = _turn_limit(S, members, now, h)
+    turned = _turn_limit(S, members, now, h, min(shortest, h))
     if turned < h:
         natural = min(natural, turned)
     shorter = _within_margins(F, members, now, margin, min(h, turned))

@@ -27,12 +27,21 @@ MIN_TICKS = 64.0
 
 #: seconds between two steps of an awake island (World(contact_step=...) overrides it)
 ISLAND_STEP = 1.0 / 240.0
-#: a step is cut short where a gap closes sooner (its impact then has its restitution), but
-#: never below this fraction of ISLAND_STEP, so that time moves on
-SHORTEST_STEP = 1e-6
-#: an island's step is no longer than this angle over its fastest-turning polygon's spin:
-#: the step's forces keep the directions of its start while corners move on arcs, which
-#: leaves overlaps of about MAX_TURN^2 / 2 of a reach for the next step to push out
+#: a step is cut short where a gap closes sooner (its impact then has its restitution) or a
+#: polygon turns faster than MAX_TURN, but never below the island's floor: this fraction of
+#: ISLAND_STEP, or (its contact rows + 1) / ROW_BUDGET of it where that is less. A cut step
+#: solves the whole island, so the floor bounds what one body's bounces and spins cost the
+#: others: at most about ROW_BUDGET rows of cut steps per ISLAND_STEP
+SHORTEST_STEP = 0.25
+#: (see SHORTEST_STEP)
+ROW_BUDGET = 4096.0
+#: a step cut where a body struck within it would travel further than the manifold looked is
+#: at least this fraction of ISLAND_STEP: soundness first, so this cut may go below the floor
+SHORTEST_REACH_STEP = 1e-6
+#: an island's step is no longer than this angle over its fastest-turning polygon's spin
+#: (down to its floor): the step's forces keep the directions of its start while corners
+#: move on arcs, which leaves overlaps of about MAX_TURN^2 / 2 of a reach for the next step
+#: to push out
 MAX_TURN = 0.01
 #: a point with a gap that closes within this fraction of ISLAND_STEP, fast enough to bounce,
 #: bounces at the step's start, from its gap, instead of cutting the step short at its
