@@ -1614,7 +1614,7 @@ def _turn_limit(S, members, now, h, shortest):
             fastest = max(fastest, abs(now[k, 2]))
     if fastest * h <= MAX_TURN:
         return h
-    return min(max(MAX_TURN / fastest, shortest), h)
+    return max(MAX_TURN / fastest, shortest)
 
 
 @njit(cache=True)

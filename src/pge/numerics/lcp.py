@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from pge._jit_cache import njit
+
 __all__ = ["lemke"]
 
 #: pivot entries below this times the largest entry of their column count as zero
