@@ -21,6 +21,7 @@ import numpy as np
 from pge._jit_cache import njit
 
 from pge.core import layout as L
+from pge.core.borrow import borrowed
 from pge.contact.manifold import NCOLUMNS, NX, NY, PX, PY, SEPARATION, polygon_polygon_points
 from pge.core.impulse import contact_impulse, patch_impulse
 from pge.core.motion import advance, orient
@@ -330,9 +331,9 @@ def collide(S, a, b, feature, t):
         and last != t
     )
     patch = False
+    restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
+    mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
     if normal_speed < 0.0 and not absorb:
-        restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
-        mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
         if I[a, L.KIND] != CIRCLE and I[b, L.KIND] != CIRCLE:
             patch, x1, y1, x2, y2 = face_patch(S, a, b, nx, ny, reach)
         if patch:
@@ -348,9 +349,13 @@ def collide(S, a, b, feature, t):
     # lower, two polygons grinding, a body squeezed between two. Its island's step then takes
     # all its points at once, so runs of impacts that would converge on an instant end after
     # a few. A pair that parts faster is in flight (an elastic corner-then-corner hit, a ball
-    # shot to and fro between two walls): its next impact is exact, as any in a gas.
+    # shot to and fro between two walls): its next impact is exact, as any in a gas. So is a
+    # pair whose impacts lose nothing (restitution 1, no friction): runs of impacts converge
+    # on an instant only by losing energy at each (elastic hard discs make finitely many
+    # collisions in finite time), so a lossless pair that meets again is not held.
     leaving = ux * nx + uy * ny
-    again = leaving * within < CONTACT_MARGIN * reach and t - last <= within
+    lossless = restitution == 1.0 and mu == 0.0
+    again = leaving * within < CONTACT_MARGIN * reach and t - last <= within and not lossless
     F[a, L.LAST_HIT] = t
     F[b, L.LAST_HIT] = t
     I[a, L.LAST_OTHER] = b
@@ -432,7 +437,11 @@ def run(S, until, notify_all):
     events the clock cannot separate; ``out`` names the last event's bodies. TOO_FAST:
     ``Q[FAST_BODY]``'s travel step is shorter than the clock can resolve (``place``);
     nothing has used its box.
+
+    The loop works on the state ``borrowed``: its arrays without reference counts
+    (``pge.core.borrow``; the caller holds them).
     """
+    S = borrowed(S)
     I = S[1]
     P = S[3]
     Q = S[4]
