@@ -230,7 +230,7 @@ def time_heap(world, pushes_per_pop: float, rounds: int = 400_000, repeats: int 
     state = world._state
     n = int(state.Q[L.HEAP_N])
     now = float(state.P[L.TIME])
-    leads = np.sort(state.slot_time[state.heap[:n]] - now)
+    leads = np.sort(state.heap_time[:n] - now)
     leads = leads[np.isfinite(leads) & (leads >= 0.0)]
     rng = np.random.default_rng(1)
     draws = rng.choice(leads, size=1 << 16)
@@ -238,12 +238,8 @@ def time_heap(world, pushes_per_pop: float, rounds: int = 400_000, repeats: int 
 
     @njit
     def churn(S, rounds, draws, twice):
-        slot_time = S[9]
-        slot_key = S[10]
         for k in range(rounds):
-            slot = pop_earliest(S)
-            t = slot_time[slot]
-            key = slot_key[slot]
+            slot, t, key = pop_earliest(S)
             m = k & 65535
             push(S, t + draws[m], key, 0, 0, 0, 0, 0)
             if twice[m]:

@@ -1,8 +1,8 @@
 """The compiled event loop: collisions and horizons; timers and frames go back to Python.
 
 State is one tuple ``S`` of arrays (see ``pge.core.state.EngineState``):
-``(F, I, OL, P, Q, head, static_start, static_items, heap, slot_time,
-slot_key, slot_data, free, stats, out, scratch, pending, OB, excused)``; column meanings
+``(F, I, OL, P, Q, head, static_start, static_items, heap, heap_time,
+heap_key, slot_data, free, stats, out, scratch, pending, OB, excused)``; column meanings
 are in ``pge.core.layout``.
 
 One event (``run``): pop the earliest queue entry; skip it if stale (a
@@ -445,9 +445,7 @@ def run(S, until, notify_all):
     I = S[1]
     P = S[3]
     Q = S[4]
-    heap = S[8]
-    slot_time = S[9]
-    slot_key = S[10]
+    heap_time = S[9]
     slot_data = S[11]
     stats = S[13]
     out = S[14]
@@ -458,11 +456,10 @@ def run(S, until, notify_all):
             return L.NEED_SPACE
         if Q[L.HEAP_N] == 0:
             return L.EMPTY
-        t = slot_time[heap[0]]
-        if t > until:
+        if heap_time[0] > until:
             return L.DONE
-        slot = pop_earliest(S)
-        kind = slot_key[slot] >> L.KIND_SHIFT
+        slot, t, key = pop_earliest(S)
+        kind = key >> L.KIND_SHIFT
         a = slot_data[slot, 0]
         b = slot_data[slot, 1]
         count_a = slot_data[slot, 2]

@@ -33,8 +33,8 @@ class EngineState:
         self.static_start = np.zeros(2, dtype=np.int64)
         self.static_items = np.zeros(0, dtype=np.int64)
         self.heap = np.zeros(event_capacity, dtype=np.int64)
-        self.slot_time = np.zeros(event_capacity)
-        self.slot_key = np.zeros(event_capacity, dtype=np.int64)
+        self.heap_time = np.zeros(event_capacity)  # by heap position, beside ``heap``
+        self.heap_key = np.zeros(event_capacity, dtype=np.int64)
         self.slot_data = np.zeros((event_capacity, 5), dtype=np.int64)
         self.free = np.arange(event_capacity, dtype=np.int64)[::-1].copy()
         self.Q[L.FREE_N] = event_capacity
@@ -62,8 +62,8 @@ class EngineState:
             self.static_start,
             self.static_items,
             self.heap,
-            self.slot_time,
-            self.slot_key,
+            self.heap_time,
+            self.heap_key,
             self.slot_data,
             self.free,
             self.stats,
@@ -145,16 +145,16 @@ class EngineState:
         grown = capacity - old
         heap = np.zeros(capacity, dtype=np.int64)
         heap[:old] = self.heap
-        slot_time = np.zeros(capacity)
-        slot_time[:old] = self.slot_time
-        slot_key = np.zeros(capacity, dtype=np.int64)
-        slot_key[:old] = self.slot_key
+        heap_time = np.zeros(capacity)
+        heap_time[:old] = self.heap_time
+        heap_key = np.zeros(capacity, dtype=np.int64)
+        heap_key[:old] = self.heap_key
         slot_data = np.zeros((capacity, 5), dtype=np.int64)
         slot_data[:old] = self.slot_data
         free = np.zeros(capacity, dtype=np.int64)
         free[:free_now] = self.free[:free_now]
         free[free_now : free_now + grown] = np.arange(capacity - 1, old - 1, -1)
-        self.heap, self.slot_time, self.slot_key, self.slot_data, self.free = heap, slot_time, slot_key, slot_data, free
+        self.heap, self.heap_time, self.heap_key, self.slot_data, self.free = heap, heap_time, heap_key, slot_data, free
         self.Q[L.FREE_N] = free_now + grown
         self.refresh()
 
