@@ -48,7 +48,7 @@ def timed_step_island(clock):
         return value
 
     def step_island(S, members, local, h, t, warm_keys, warm_impulses):
-        F = S[0]
+        F = S.F
         now, margin = timed("start", K._start, S, members, local, h, t)
         rows, pairs, count = timed("collect (manifold)", K._collect, S, members, local, margin, t)
         pull = 0.0
@@ -92,7 +92,7 @@ def timed_step_island(clock):
         sweeps += pushes
         labels, fastest, deepest = timed("finish (touch)", K._finish, S, members, local, now, end, lift, rows,
                                          pairs, count, h, speed)
-        S[13][L.S_ISLAND_STEPS] += 1
+        S.stats[L.S_ISLAND_STEPS] += 1
         order = np.argsort(keys)
         impulses = np.empty((count, 3))
         for c in range(count):

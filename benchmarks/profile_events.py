@@ -158,9 +158,9 @@ def time_calls(repeats: int = 5, n: int = 2_000_000) -> None:
 
     @njit(**apart)
     def work_tuple(S, i):
-        F = S[0]
-        I = S[1]
-        Q = S[4]
+        F = S.F
+        I = S.I
+        Q = S.Q
         j = i & 63
         Q[1] += I[j, 0] + np.int64(F[j, 0])
         return Q[1]
@@ -175,22 +175,22 @@ def time_calls(repeats: int = 5, n: int = 2_000_000) -> None:
     def loop_tuple(S, n):
         for i in range(n):
             work_tuple(S, i)
-        return S[4][1]
+        return S.Q[1]
 
     @njit
     def loop_arrays(S, n):
-        F = S[0]
-        I = S[1]
-        Q = S[4]
+        F = S.F
+        I = S.I
+        Q = S.Q
         for i in range(n):
             work_arrays(F, I, Q, i)
         return Q[1]
 
     @njit
     def loop_inline(S, n):
-        F = S[0]
-        I = S[1]
-        Q = S[4]
+        F = S.F
+        I = S.I
+        Q = S.Q
         for i in range(n):
             j = i & 63
             Q[1] += I[j, 0] + np.int64(F[j, 0])
@@ -245,16 +245,16 @@ def time_heap(world, pushes_per_pop: float, rounds: int = 400_000, repeats: int 
             if twice[m]:
                 push(S, t + draws[(m * 7919) & 65535], key, 0, 0, 0, 0, 0)
                 pop_earliest(S)  # keep the size steady
-        return S[4][L.HEAP_N]
+        return S.Q[L.HEAP_N]
 
     @njit
     def pops_only(S, rounds):
         for k in range(rounds):
             pop_earliest(S)
-        return S[4][L.HEAP_N]
+        return S.Q[L.HEAP_N]
 
     def copy_of_state():
-        return tuple(a.copy() for a in state.S)
+        return type(state.S)(*(a.copy() for a in state.S))
 
     churn(copy_of_state(), 10, draws, twice)
     pops_only(copy_of_state(), 10)

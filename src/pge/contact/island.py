@@ -105,8 +105,8 @@ _KEY_BITS = 16
 def _start(S, members, local, h, t):
     """Bodies to ``t`` (under the last step's contact forces), outlines turned; velocities
     now ``(vx, vy, spin)`` and each body's travel margin over a step of free flight."""
-    F = S[0]
-    I = S[1]
+    F = S.F
+    I = S.I
     m = members.shape[0]
     now = np.empty((m, 3))
     margin = np.empty(m)
@@ -114,7 +114,7 @@ def _start(S, members, local, h, t):
         i = members[k]
         local[i] = k
         advance(F, i, t)
-        orient(F, I, S[2], S[17], i, t)
+        orient(F, I, S.OL, S.OB, i, t)
         ax = F[i, L.FREE_AX]
         ay = F[i, L.FREE_AY]
         now[k, 0] = F[i, L.VX]
@@ -128,9 +128,9 @@ def _start(S, members, local, h, t):
 @njit(cache=True)
 def _points(S, i, j, margin, rows, count):
     """Append the manifold of bodies ``i`` and ``j`` (normal from j to i)."""
-    F = S[0]
-    I = S[1]
-    return _points_at(F, I, S[2], i, F[i, L.X], F[i, L.Y], I[i, L.OUTLINE_START], j, F[j, L.X], F[j, L.Y],
+    F = S.F
+    I = S.I
+    return _points_at(F, I, S.OL, i, F[i, L.X], F[i, L.Y], I[i, L.OUTLINE_START], j, F[j, L.X], F[j, L.Y],
                       I[j, L.OUTLINE_START], margin, rows, count)
 
 
@@ -278,10 +278,10 @@ def _midstep_rows(S, now, rows, pairs, count, h):
     the gap over the step would then dip between its ends. Zero, and the rows left where the
     contact is now, for a pair where no polygon turns (the straight lines are then exact) and
     for a point whose features change within the step (its key is not in the moved manifold)."""
-    F = S[0]
-    I = S[1]
-    OL = S[2]
-    OB = S[17]
+    F = S.F
+    I = S.I
+    OL = S.OL
+    OB = S.OB
     outline = np.empty((16, OL.shape[1]))
     half = np.empty((4, NCOLUMNS))
     full = np.empty((4, NCOLUMNS))
@@ -327,9 +327,9 @@ def _midstep_rows(S, now, rows, pairs, count, h):
 def _collect(S, members, local, margin, t):
     """The island's manifold: contact rows and, per row, the two bodies' local indices (-1:
     a fixed body) and ids."""
-    F = S[0]
-    I = S[1]
-    scratch = S[15]
+    F = S.F
+    I = S.I
+    scratch = S.scratch
     m = members.shape[0]
     island = I[members[0], L.ISLAND]
     capacity = 16 + 8 * m
@@ -345,7 +345,7 @@ def _collect(S, members, local, margin, t):
             if I[j, L.FIXED] != 0:
                 other = -1
                 pad = margin[k] + own
-                orient(F, I, S[2], S[17], j, t)
+                orient(F, I, S.OL, S.OB, j, t)
             elif I[j, L.ISLAND] == island and local[j] > k:
                 other = local[j]
                 pad = margin[k] + margin[other] + CONTACT_MARGIN * min(F[i, L.REACH], F[j, L.REACH])
@@ -439,11 +439,11 @@ def _row_bounce(F, Q, rest_height, i, j, closing, reach):
 def _prepare(S, rows, pairs, count, h, warm_keys, warm_impulses):
     """Lever arms, effective masses, friction and target normal speeds of every row, and the
     impulses the same contact took at the last step (warm start)."""
-    F = S[0]
-    Q = S[4]
-    rest_height = S[3][L.REST_HEIGHT]
-    window = SIMULTANEOUS * S[3][L.CONTACT_STEP]
-    early = BOUNCE_WINDOW * S[3][L.CONTACT_STEP]
+    F = S.F
+    Q = S.Q
+    rest_height = S.P[L.REST_HEIGHT]
+    window = SIMULTANEOUS * S.P[L.CONTACT_STEP]
+    early = BOUNCE_WINDOW * S.P[L.CONTACT_STEP]
     keys = np.empty(count, dtype=np.int64)
     for c in range(count):
         i = pairs[c, 2]
@@ -1370,8 +1370,8 @@ def _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed):
     where it slips on a contact with friction that presses on it, beyond the solve's
     tolerance of ``speed``), and the deepest overlap of a point over the smaller reach of
     its pair."""
-    F = S[0]
-    I = S[1]
+    F = S.F
+    I = S.I
     labels = _parts(pairs, count, members.shape[0])
     pushed = np.zeros(members.shape[0], dtype=np.bool_)
     # slipping at a contact with friction that presses on it (an impulse that changes a
@@ -1541,11 +1541,11 @@ def _until_contact(S, now, rows, pairs, count, h, early, shortest):
     too slow to bounce but for what the window's acceleration adds, and its gap's bound
     stops it. So with the window a step is cut no shorter than it; never below
     ``shortest``, the island's floor (``step_island``)."""
-    F = S[0]
-    Q = S[4]
-    rest_height = S[3][L.REST_HEIGHT]
-    window = SIMULTANEOUS * S[3][L.CONTACT_STEP]
-    step = S[3][L.CONTACT_STEP]
+    F = S.F
+    Q = S.Q
+    rest_height = S.P[L.REST_HEIGHT]
+    window = SIMULTANEOUS * S.P[L.CONTACT_STEP]
+    step = S.P[L.CONTACT_STEP]
     length = h
     for c in range(count):
         i = pairs[c, 2]
@@ -1592,7 +1592,7 @@ def _after_bounces(S, members, now, rows, pairs, count, h, speed, down_x, down_y
         if trial[c, IMPACT] < 0.0:
             trial[c, IMPACT] = -math.inf
     moved = now.copy()
-    _impacts(S[0], members, moved, trial, pairs, count, speed, down_x, down_y)
+    _impacts(S.F, members, moved, trial, pairs, count, speed, down_x, down_y)
     early = np.full(count, BOUNCE_WINDOW)
     for c in range(count):
         ux, uy = _relative(now, pairs, rows, c)
@@ -1607,7 +1607,7 @@ def _turn_limit(S, members, now, h, shortest):
     """``h``, or less where a polygon turns faster than ``MAX_TURN`` a step (a circle's
     spin does not move its outline); at least ``shortest`` (the island's floor,
     ``step_island``), so that its steps per second are bounded whatever its spins."""
-    I = S[1]
+    I = S.I
     fastest = 0.0
     for k in range(members.shape[0]):
         if I[members[k], L.KIND] != CIRCLE:
@@ -1666,7 +1666,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     ``_until_contact``; the next step is due after it), and each member's push-out lift
     (``_push_out``), which the step takes back over its length.
     """
-    F = S[0]
+    F = S.F
     now, margin = _start(S, members, local, h, t)
     rows, pairs, count = _collect(S, members, local, margin, t)
     pull = 0.0
@@ -1710,7 +1710,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y)
     sweeps += pushes
     labels, fastest, deepest = _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed)
-    S[13][L.S_ISLAND_STEPS] += 1
+    S.stats[L.S_ISLAND_STEPS] += 1
     order = np.argsort(keys)
     impulses = np.empty((count, 3))
     for c in range(count):

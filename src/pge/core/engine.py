@@ -1,9 +1,7 @@
 """The compiled event loop: collisions and horizons; timers and frames go back to Python.
 
-State is one tuple ``S`` of arrays (see ``pge.core.state.EngineState``):
-``(F, I, OL, P, Q, head, static_start, static_items, heap, heap_time,
-heap_key, slot_data, free, stats, out, scratch, pending, OB, excused)``; column meanings
-are in ``pge.core.layout``.
+State is one named tuple ``S`` of arrays (``pge.core.state.State``: ``S.F``, ``S.I``,
+``S.heap``, ...); column meanings are in ``pge.core.layout``.
 
 One event (``run``): pop the earliest queue entry; skip it if stale (a
 body's invalidation counter moved on); advance the bodies involved to the
@@ -44,8 +42,8 @@ CIRCLE = 0
 @njit(cache=True, inline="always")
 def queue_prediction(S, i):
     """Ask for body ``i`` to be predicted again before the next event."""
-    Q = S[4]
-    pending = S[16]
+    Q = S.Q
+    pending = S.pending
     if Q[L.PENDING_DONE] == Q[L.PENDING_N]:
         Q[L.PENDING_N] = 0
         Q[L.PENDING_DONE] = 0
@@ -57,9 +55,9 @@ def queue_prediction(S, i):
 @njit(cache=True)
 def drain_predictions(S):
     """Predict the queued bodies, each pair once; False if event slots ran low first."""
-    I = S[1]
-    Q = S[4]
-    pending = S[16]
+    I = S.I
+    Q = S.Q
+    pending = S.pending
     mark = Q[L.PENDING_MARK]
     while Q[L.PENDING_DONE] < Q[L.PENDING_N]:
         if Q[L.FREE_N] < Q[L.MIN_FREE]:
@@ -77,7 +75,7 @@ def drain_predictions(S):
 def touch(S, i):
     """Body ``i``'s motion or shape changed now: invalidate its events, renew its box and
     queue it for prediction."""
-    I = S[1]
+    I = S.I
     if I[i, L.ALIVE] == 0:
         return
     I[i, L.COUNT] += 1
@@ -110,9 +108,9 @@ def touch_group(S, ids, count):
 def contact_geometry(S, a, b, feature):
     """Contact point and unit normal (from b towards a) of ``a`` and ``b`` at their common
     reference time, with ``feature`` from the kernel: ``(px, py, nx, ny)``."""
-    F = S[0]
-    I = S[1]
-    OL = S[2]
+    F = S.F
+    I = S.I
+    OL = S.OL
     n_b = I[b, L.OUTLINE_N]
     if I[a, L.KIND] == CIRCLE:
         if I[b, L.KIND] == CIRCLE:
@@ -145,9 +143,9 @@ def face_patch(S, a, b, nx, ny, reach):
     ``SIMULTANEOUS`` of the island step), so that a face landing flat to rounding lands as a
     face. Both ends must be closing (where one separates, the impact is the other's alone).
     Returns ``(found, x1, y1, x2, y2)``, the two points."""
-    F = S[0]
-    I = S[1]
-    OL = S[2]
+    F = S.F
+    I = S.I
+    OL = S.OL
     rows = np.empty((4, NCOLUMNS))
     count = polygon_polygon_points(
         F[a, L.X], F[a, L.Y], OL, I[a, L.OUTLINE_START], I[a, L.OUTLINE_N],
@@ -156,7 +154,7 @@ def face_patch(S, a, b, nx, ny, reach):
     )
     if count != 2 or rows[0, NX] * nx + rows[0, NY] * ny < 1.0 - 1e-9:
         return False, 0.0, 0.0, 0.0, 0.0
-    window = SIMULTANEOUS * S[3][L.CONTACT_STEP]
+    window = SIMULTANEOUS * S.P[L.CONTACT_STEP]
     for k in range(2):
         rax = rows[k, PX] - F[a, L.X]
         ray = rows[k, PY] - F[a, L.Y]
@@ -261,13 +259,13 @@ def joins(S, a, b, nx, ny, leaving):
     smaller reach), or one of them already belongs to an island. Then the bodies join one
     island, whose step solves the contact from now on. With no
     acceleration anywhere (a gas, a game in space) no contact is persistent."""
-    F = S[0]
-    I = S[1]
+    F = S.F
+    I = S.I
     scale = max(math.hypot(F[a, L.FREE_AX], F[a, L.FREE_AY]), math.hypot(F[b, L.FREE_AX], F[b, L.FREE_AY]))
     if not scale > 0.0:
         return False
     reach = min(F[a, L.REACH], F[b, L.REACH])
-    if leaving * abs(leaving) >= 2.0 * scale * S[3][L.REST_HEIGHT] * reach:
+    if leaving * abs(leaving) >= 2.0 * scale * S.P[L.REST_HEIGHT] * reach:
         return False
     pressing = (F[a, L.FREE_AX] - F[b, L.FREE_AX]) * nx + (F[a, L.FREE_AY] - F[b, L.FREE_AY]) * ny < 0.0
     return pressing or I[a, L.ISLAND] >= 0 or I[b, L.ISLAND] >= 0
@@ -301,14 +299,14 @@ def collide(S, a, b, feature, t):
     island took part (which may sleep), else ``NO_JOIN``; when not ``NO_JOIN`` the loop hands
     the collision to Python, which joins, absorbs or wakes the islands.
     """
-    F = S[0]
-    I = S[1]
-    Q = S[4]
-    out = S[14]
+    F = S.F
+    I = S.I
+    Q = S.Q
+    out = S.out
     advance(F, a, t)
     advance(F, b, t)
-    orient(F, I, S[2], S[17], a, t)
-    orient(F, I, S[2], S[17], b, t)
+    orient(F, I, S.OL, S.OB, a, t)
+    orient(F, I, S.OL, S.OB, b, t)
     px, py, nx, ny = contact_geometry(S, a, b, feature)
     rax = px - F[a, L.X]
     ray = py - F[a, L.Y]
@@ -318,7 +316,7 @@ def collide(S, a, b, feature, t):
     uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
     normal_speed = ux * nx + uy * ny
     impulse = 0.0
-    within = S[3][L.CONTACT_STEP]
+    within = S.P[L.CONTACT_STEP]
     reach = min(F[a, L.REACH], F[b, L.REACH])
     last = _pair_last_hit(F, I, a, b)
     # At most once per pair and instant: if the island's step left the pair touching and
@@ -399,8 +397,8 @@ def watch(S, t, kind):
     ulps per event). The count lives in the state, so returns to Python for callbacks,
     timers and frames do not restart it.
     """
-    P = S[3]
-    Q = S[4]
+    P = S.P
+    Q = S.Q
     cap = Q[L.STORM_CAP]
     tick = np.nextafter(t, _INF) - t
     span = max(STORM_SPAN, STORM_TICKS * cap * tick)
@@ -442,13 +440,13 @@ def run(S, until, notify_all):
     (``pge.core.borrow``; the caller holds them).
     """
     S = borrowed(S)
-    I = S[1]
-    P = S[3]
-    Q = S[4]
-    heap_time = S[9]
-    slot_data = S[11]
-    stats = S[13]
-    out = S[14]
+    I = S.I
+    P = S.P
+    Q = S.Q
+    heap_time = S.heap_time
+    slot_data = S.slot_data
+    stats = S.stats
+    out = S.out
     while True:
         if Q[L.FAST_BODY] >= 0:
             return _report(out, P[L.TIME], Q[L.FAST_BODY], -1, L.TOO_FAST)

@@ -29,8 +29,8 @@ def cell_index(P, value, origin, count):
 @njit(cache=True, inline="always")
 def unlink(S, i):
     """Take moving body ``i`` out of its cell's list (no-op if it is in none)."""
-    I = S[1]
-    head = S[5]
+    I = S.I
+    head = S.head
     c = I[i, L.CELL]
     if c < 0:
         return
@@ -48,11 +48,11 @@ def unlink(S, i):
 @njit(cache=True, inline="always")
 def file_in_cell(S, i):
     """Put moving body ``i`` in the cell of its box's lower-left corner."""
-    F = S[0]
-    I = S[1]
-    P = S[3]
-    Q = S[4]
-    head = S[5]
+    F = S.F
+    I = S.I
+    P = S.P
+    Q = S.Q
+    head = S.head
     c = cell_index(P, F[i, L.BOX_X0], P[L.GRID_X0], Q[L.GRID_NX]) * Q[L.GRID_NY] + cell_index(
         P, F[i, L.BOX_Y0], P[L.GRID_Y0], Q[L.GRID_NY]
     )
@@ -77,14 +77,14 @@ def gather(S, i, pad=0.0):
     and column below; fixed bodies (only for a moving ``i``) from the static
     lists, de-duplicated by stamp.
     """
-    F = S[0]
-    I = S[1]
-    P = S[3]
-    Q = S[4]
-    head = S[5]
-    static_start = S[6]
-    static_items = S[7]
-    scratch = S[15]
+    F = S.F
+    I = S.I
+    P = S.P
+    Q = S.Q
+    head = S.head
+    static_start = S.static_start
+    static_items = S.static_items
+    scratch = S.scratch
     stamp = Q[L.STAMP_COUNTER] + 1
     Q[L.STAMP_COUNTER] = stamp
     nx = Q[L.GRID_NX]
@@ -128,9 +128,9 @@ def gather_all(S, i):
     to measure what the grid saves; it is a superset of ``gather``'s, so the
     predictions (and the events) are the same.
     """
-    I = S[1]
-    Q = S[4]
-    scratch = S[15]
+    I = S.I
+    Q = S.Q
+    scratch = S.scratch
     # Bump the stamp as gather does, so that code reading stamps sees the same state.
     Q[L.STAMP_COUNTER] += 1
     moving = I[i, L.FIXED] == 0

@@ -33,12 +33,12 @@ def overlap_depth(S, i, j):
 def nearest_normal(S, i, j):
     """``(nx, ny, depth)`` of bodies ``i`` and ``j`` at ``P[TIME]``: the unit normal of their
     nearest features, from ``j`` towards ``i``, and the overlap depth as ``overlap_depth``."""
-    F = S[0]
-    I = S[1]
-    OL = S[2]
-    P = S[3]
-    orient(F, I, OL, S[17], i, P[L.TIME])
-    orient(F, I, OL, S[17], j, P[L.TIME])
+    F = S.F
+    I = S.I
+    OL = S.OL
+    P = S.P
+    orient(F, I, OL, S.OB, i, P[L.TIME])
+    orient(F, I, OL, S.OB, j, P[L.TIME])
     xi, yi, _, _ = state_at(F, i, P[L.TIME])
     xj, yj, _, _ = state_at(F, j, P[L.TIME])
     dx = xi - xj
@@ -69,9 +69,9 @@ def nearest_normal(S, i, j):
 def find_overlap(S, ids, tolerance):
     """First pair ``(i, j, depth)`` among ``ids`` and their neighbours overlapping by more
     than ``tolerance`` times their bounding radii; ``(-1, -1, 0.0)`` when there is none."""
-    F = S[0]
-    I = S[1]
-    scratch = S[15]
+    F = S.F
+    I = S.I
+    scratch = S.scratch
     for k in range(ids.shape[0]):
         i = ids[k]
         n = gather(S, i)

@@ -71,12 +71,12 @@ def contact_time(now, dt, closing, allowance):
 @njit(cache=True, inline="always")
 def place(S, i):
     """Give body ``i`` a horizon and a swept box from now; file a moving body in the grid."""
-    F = S[0]
-    I = S[1]
-    P = S[3]
-    Q = S[4]
+    F = S.F
+    I = S.I
+    P = S.P
+    Q = S.Q
     now = P[L.TIME]
-    orient(F, I, S[2], S[17], i, now)
+    orient(F, I, S.OL, S.OB, i, now)
     ax = F[i, L.AX]
     ay = F[i, L.AY]
     x, y, vx, vy = state_at(F, i, now)
@@ -149,15 +149,15 @@ def predict(S, i, mark):
     """Predict body ``i`` against every candidate (skipping bodies carrying ``mark`` and
     the pairs an island's step solves: both in one island, or one in an island and the
     other fixed)."""
-    F = S[0]
-    I = S[1]
-    OL = S[2]
-    P = S[3]
-    stats = S[13]
-    scratch = S[15]
+    F = S.F
+    I = S.I
+    OL = S.OL
+    P = S.P
+    stats = S.stats
+    scratch = S.scratch
     # The broad-phase switches (World.broadphase), read once per call: all zero in
     # normal runs, so each stage costs one predictable branch per pair.
-    switches = S[4][L.BROADPHASE]
+    switches = S.Q[L.BROADPHASE]
     boxes = (switches & L.NO_BOXES) == 0
     short_circuit = (switches & L.NO_SHORT_CIRCUIT) == 0
     lecture = (switches & L.LECTURE_TEST) != 0
@@ -215,7 +215,7 @@ def predict(S, i, mark):
             if culled:
                 stats[L.S_BOUND_REJECTS] += 1
                 continue
-        if S[4][L.EXCUSED_N] > 0 and still_excused(S, i, j):
+        if S.Q[L.EXCUSED_N] > 0 and still_excused(S, i, j):
             continue
         stats[L.S_PREDICTIONS] += 1
         still = still_speed(F, i, j, ix, iy, ivx, ivy, jx, jy, jvx, jvy)
@@ -283,8 +283,8 @@ def predict(S, i, mark):
 def still_excused(S, i, j):
     """Whether ``i`` and ``j`` are a pair that overlapped when the run began and overlap
     still (they do not collide); a pair found apart is no longer excused."""
-    excused = S[18]
-    Q = S[4]
+    excused = S.excused
+    Q = S.Q
     a = min(i, j)
     b = max(i, j)
     for k in range(Q[L.EXCUSED_N]):
@@ -305,9 +305,9 @@ def _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window, still):
     kernels on the unturned outlines ``OB`` and the angles, spins and angular
     accelerations now. ``d, dv, da`` are ``i`` relative to ``j``; a (polygon,
     circle) pair is turned round."""
-    F = S[0]
-    I = S[1]
-    OB = S[17]
+    F = S.F
+    I = S.I
+    OB = S.OB
     if I[i, L.KIND] == CIRCLE:
         if I[j, L.KIND] == CIRCLE:
             return _INF, 0
@@ -331,6 +331,6 @@ def _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window, still):
 @njit(cache=True)
 def new_mark(S):
     """A fresh pair-once mark."""
-    Q = S[4]
+    Q = S.Q
     Q[L.MARK_COUNTER] += 1
     return Q[L.MARK_COUNTER]

@@ -30,12 +30,12 @@ def _before(t1, k1, s1, t2, k2, s2):
 @njit(cache=True, inline="always")
 def push(S, t, key, a, b, count_a, count_b, feature):
     """Queue an event; the caller guarantees a free slot (``Q[MIN_FREE]``)."""
-    Q = S[4]
-    heap = S[8]
-    heap_time = S[9]
-    heap_key = S[10]
-    slot_data = S[11]
-    free = S[12]
+    Q = S.Q
+    heap = S.heap
+    heap_time = S.heap_time
+    heap_key = S.heap_key
+    slot_data = S.slot_data
+    free = S.free
     n_free = Q[L.FREE_N] - 1
     slot = free[n_free]
     Q[L.FREE_N] = n_free
@@ -66,11 +66,11 @@ def pop_earliest(S):
 
     The slot's data stay readable until the next ``push``.
     """
-    Q = S[4]
-    heap = S[8]
-    heap_time = S[9]
-    heap_key = S[10]
-    free = S[12]
+    Q = S.Q
+    heap = S.heap
+    heap_time = S.heap_time
+    heap_key = S.heap_key
+    free = S.free
     top = heap[0]
     top_time = heap_time[0]
     top_key = heap_key[0]

@@ -1,17 +1,31 @@
 """The engine's arrays, their growth, and the grid's static part (Python side).
 
-``EngineState.S`` is the tuple handed to every compiled function; it is
-rebuilt whenever an array is replaced by a larger one.
+``EngineState.S`` is the ``State`` handed to every compiled function, a named tuple of
+the arrays (compiled code reads ``S.F``, ``S.heap``, ...); it is rebuilt whenever an
+array is replaced by a larger one.
 """
 
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numpy as np
 
 from pge.core import layout as L
 from pge.core.tuning import STORM_LIMIT, STORM_PER_BODY
+
+
+#: The engine state as compiled code sees it: bodies (``F`` floats, ``I`` ints, one row
+#: each, columns in ``pge.core.layout``), polygon outlines turned (``OL``) and unturned
+#: (``OB``), world parameters (``P`` floats, ``Q`` ints), the grid (``head``,
+#: ``static_start``, ``static_items``), the event queue (``heap`` with ``heap_time`` and
+#: ``heap_key`` beside it, ``slot_data``, ``free``), the counters of ``World.stats``
+#: (``stats``), the record of the event that returned to Python (``out``), work space
+#: (``scratch``), the bodies waiting to be predicted (``pending``) and the pairs that
+#: overlapped at the start (``excused``).
+State = namedtuple("State", ["F", "I", "OL", "P", "Q", "head", "static_start", "static_items", "heap", "heap_time",
+                             "heap_key", "slot_data", "free", "stats", "out", "scratch", "pending", "OB", "excused"])
 
 
 class EngineState:
@@ -51,28 +65,8 @@ class EngineState:
         self.refresh()
 
     def refresh(self) -> None:
-        """Rebuild the tuple of arrays passed to compiled code."""
-        self.S = (
-            self.F,
-            self.I,
-            self.OL,
-            self.P,
-            self.Q,
-            self.head,
-            self.static_start,
-            self.static_items,
-            self.heap,
-            self.heap_time,
-            self.heap_key,
-            self.slot_data,
-            self.free,
-            self.stats,
-            self.out,
-            self.scratch,
-            self.pending,
-            self.OB,
-            self.excused,
-        )
+        """Rebuild the ``State`` passed to compiled code."""
+        self.S = State(*(getattr(self, name) for name in State._fields))
 
     def excuse(self, i: int, j: int) -> None:
         """Let bodies ``i`` and ``j``, which overlap now, pass until they have separated."""
