@@ -832,7 +832,7 @@ class World:
         self._stop_requested = False
         while True:
             notify_all = emit or bool(self._collision_callbacks)
-            code = engine.run(state.S, until, notify_all)
+            code = engine.run(state.S, until, notify_all, self._polygons())
             if code == L.DONE or code == L.EMPTY:
                 if until != _INF:
                     state.P[L.TIME] = until
@@ -1067,8 +1067,16 @@ class World:
     def _drain(self) -> None:
         """Run the queued predictions, growing the event arrays as needed."""
         state = self._state
-        while not engine.drain_predictions(state.S):
+        while not engine.drain_predictions(state.S, self._polygons()):
             state.ensure_events(0)
+
+    def _polygons(self):
+        """None while every polygon is fixed (no pair turns, no two polygons meet), else True:
+        which compiled version of the event loop runs (``engine.run``)."""
+        state = self._state
+        I = state.I[: state.n]
+        moving = (I[:, L.KIND] != CIRCLE) & (I[:, L.FIXED] == 0) & (I[:, L.ALIVE] != 0)
+        return True if moving.any() else None
 
     # ------------------------------------------------------------- validation
 

@@ -53,8 +53,9 @@ def queue_prediction(S, i):
 
 
 @njit(cache=True)
-def drain_predictions(S):
-    """Predict the queued bodies, each pair once; False if event slots ran low first."""
+def drain_predictions(S, polygons):
+    """Predict the queued bodies, each pair once; False if event slots ran low first.
+    ``polygons``: None where no polygon can move (``predict``)."""
     I = S.I
     Q = S.Q
     pending = S.pending
@@ -66,7 +67,7 @@ def drain_predictions(S):
         Q[L.PENDING_DONE] += 1
         if I[i, L.MARK] == mark or I[i, L.ALIVE] == 0:
             continue
-        predict(S, i, mark)
+        predict(S, i, mark, polygons)
         I[i, L.MARK] = mark
     return True
 
@@ -105,9 +106,11 @@ def touch_group(S, ids, count):
 
 
 @njit(cache=True)
-def contact_geometry(S, a, b, feature):
+def contact_geometry(S, a, b, feature, polygons):
     """Contact point and unit normal (from b towards a) of ``a`` and ``b`` at their common
-    reference time, with ``feature`` from the kernel: ``(px, py, nx, ny)``."""
+    reference time, with ``feature`` from the kernel: ``(px, py, nx, ny)``. ``a`` is the
+    circle of a circle and a polygon; two polygons meet only where ``polygons`` is not None
+    (``predict``)."""
     F = S.F
     I = S.I
     OL = S.OL
@@ -120,19 +123,20 @@ def contact_geometry(S, a, b, feature):
                 F[a, L.X], F[a, L.Y], F[a, L.RADIUS], F[b, L.X], F[b, L.Y], OL, I[b, L.OUTLINE_START], n_b, feature
             )
         return px, py, nx, ny
-    if F[a, L.OMEGA] != 0.0 or F[b, L.OMEGA] != 0.0:
-        # The outlines are turned to now; the angular velocities pick the point of a
-        # face-to-face patch (its faster-approaching end).
-        px, py, nx, ny = rotating_polygon_polygon_contact(
-            F[a, L.X], F[a, L.Y], F[b, L.X], F[b, L.Y], F[a, L.VX] - F[b, L.VX], F[a, L.VY] - F[b, L.VY], OL,
-            I[a, L.OUTLINE_START], I[a, L.OUTLINE_N], 0.0, F[a, L.OMEGA],
-            I[b, L.OUTLINE_START], n_b, 0.0, F[b, L.OMEGA], feature,
-        )
-    else:
-        px, py, nx, ny = polygon_polygon_contact(
+    if polygons is not None:
+        # Pruned from the version compiled for None (``if`` on an argument's type).
+        if F[a, L.OMEGA] != 0.0 or F[b, L.OMEGA] != 0.0:
+            # The outlines are turned to now; the angular velocities pick the point of a
+            # face-to-face patch (its faster-approaching end).
+            return rotating_polygon_polygon_contact(
+                F[a, L.X], F[a, L.Y], F[b, L.X], F[b, L.Y], F[a, L.VX] - F[b, L.VX], F[a, L.VY] - F[b, L.VY], OL,
+                I[a, L.OUTLINE_START], I[a, L.OUTLINE_N], 0.0, F[a, L.OMEGA],
+                I[b, L.OUTLINE_START], n_b, 0.0, F[b, L.OMEGA], feature,
+            )
+        return polygon_polygon_contact(
             F[a, L.X], F[a, L.Y], F[b, L.X], F[b, L.Y], OL, I[a, L.OUTLINE_START], I[a, L.OUTLINE_N], I[b, L.OUTLINE_START], n_b, feature
         )
-    return px, py, nx, ny
+    return 0.0, 0.0, 0.0, 0.0  # never: no two polygons meet in a world whose polygons cannot move
 
 
 @njit(cache=True)
@@ -229,6 +233,21 @@ def _record_patch(out, x1, y1, x2, y2, l1, l2, jt):
 
 
 @njit(cache=True)
+def patch_impact(S, a, b, nx, ny, reach, restitution, mu):
+    """Where two polygons meet face to face (``face_patch``), their impact at both ends of
+    the patch (``patch_collide``), recorded in ``out``: ``(True, normal impulse)``; else
+    ``(False, 0.0)``, and the impact is one point's."""
+    if S.I[a, L.KIND] == CIRCLE or S.I[b, L.KIND] == CIRCLE:
+        return False, 0.0
+    found, x1, y1, x2, y2 = face_patch(S, a, b, nx, ny, reach)
+    if not found:
+        return False, 0.0
+    l1, l2, jt = patch_collide(S.F, a, b, x1, y1, x2, y2, nx, ny, restitution, mu)
+    _record_patch(S.out, x1, y1, x2, y2, l1, l2, jt)
+    return True, l1 + l2
+
+
+@njit(cache=True)
 def point_collide(F, a, b, rax, ray, rbx, rby, nx, ny, ux, uy, restitution, mu):
     """The impact of ``a`` and ``b`` at one point (lever arms ``r_a``, ``r_b``, normal ``n``,
     relative velocity ``u`` there, approaching): one exact impulse
@@ -283,7 +302,7 @@ def _pair_last_hit(F, I, a, b):
 
 
 @njit(cache=True)
-def collide(S, a, b, feature, t):
+def collide(S, a, b, feature, t, polygons):
     """The impact of ``a`` and ``b`` at ``t``: one exact impulse
     at the contact point (restitution, Coulomb friction, the energy guard of
     ``pge.core.impulse``: ``point_collide``), or where a face meets a face both its ends
@@ -307,7 +326,7 @@ def collide(S, a, b, feature, t):
     advance(F, b, t)
     orient(F, I, S.OL, S.OB, a, t)
     orient(F, I, S.OL, S.OB, b, t)
-    px, py, nx, ny = contact_geometry(S, a, b, feature)
+    px, py, nx, ny = contact_geometry(S, a, b, feature, polygons)
     rax = px - F[a, L.X]
     ray = py - F[a, L.Y]
     rbx = px - F[b, L.X]
@@ -332,13 +351,10 @@ def collide(S, a, b, feature, t):
     restitution = combine(F[a, L.ELASTICITY], F[b, L.ELASTICITY], Q[L.RULE])
     mu = combine(F[a, L.FRICTION], F[b, L.FRICTION], Q[L.FRICTION_RULE])
     if normal_speed < 0.0 and not absorb:
-        if I[a, L.KIND] != CIRCLE and I[b, L.KIND] != CIRCLE:
-            patch, x1, y1, x2, y2 = face_patch(S, a, b, nx, ny, reach)
-        if patch:
-            l1, l2, jt = patch_collide(F, a, b, x1, y1, x2, y2, nx, ny, restitution, mu)
-            impulse = l1 + l2
-            _record_patch(out, x1, y1, x2, y2, l1, l2, jt)
-        else:
+        if polygons is not None:
+            # Pruned from the version compiled for None (``if`` on an argument's type).
+            patch, impulse = patch_impact(S, a, b, nx, ny, reach, restitution, mu)
+        if not patch:
             impulse = point_collide(F, a, b, rax, ray, rbx, rby, nx, ny, ux, uy, restitution, mu)
     ux = F[a, L.VX] - F[a, L.OMEGA] * ray - (F[b, L.VX] - F[b, L.OMEGA] * rby)
     uy = F[a, L.VY] + F[a, L.OMEGA] * rax - (F[b, L.VY] + F[b, L.OMEGA] * rbx)
@@ -423,7 +439,7 @@ def _report(out, t, a, b, code):
 
 
 @njit(cache=True)
-def run(S, until, notify_all):
+def run(S, until, notify_all, polygons):
     """Process events up to time ``until``; return a code saying why it stopped.
 
     DONE: the next event is later than ``until`` (``P[TIME]`` is not moved).
@@ -437,7 +453,11 @@ def run(S, until, notify_all):
     nothing has used its box.
 
     The loop works on the state ``borrowed``: its arrays without reference counts
-    (``pge.core.borrow``; the caller holds them).
+    (``pge.core.borrow``; the caller holds them). ``polygons`` is None when no polygon can
+    move (every polygon fixed: a gas of discs in a box): the version compiled for None
+    leaves out the kernels of turning polygons and of two polygons meeting, most of a
+    cold start's compiling for such a world; the World passes True as soon as a polygon
+    may move.
     """
     S = borrowed(S)
     I = S.I
@@ -450,7 +470,7 @@ def run(S, until, notify_all):
     while True:
         if Q[L.FAST_BODY] >= 0:
             return _report(out, P[L.TIME], Q[L.FAST_BODY], -1, L.TOO_FAST)
-        if not drain_predictions(S) or Q[L.FREE_N] < Q[L.MIN_FREE]:
+        if not drain_predictions(S, polygons) or Q[L.FREE_N] < Q[L.MIN_FREE]:
             return L.NEED_SPACE
         if Q[L.HEAP_N] == 0:
             return L.EMPTY
@@ -476,7 +496,7 @@ def run(S, until, notify_all):
             return _report(out, t, a, b, L.STORM)
         if kind == L.COLLISION:
             stats[L.S_EVENTS] += 1
-            impulse = collide(S, a, b, feature, t)
+            impulse = collide(S, a, b, feature, t, polygons)
             if impulse == 0.0 and out[L.OUT_JOIN] != L.ABSORB:
                 stats[L.S_GRAZES] += 1
             else:

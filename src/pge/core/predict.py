@@ -145,10 +145,15 @@ def still_speed(F, i, j, ix, iy, ivx, ivy, jx, jy, jvx, jvy):
 
 
 @njit(cache=True)
-def predict(S, i, mark):
+def predict(S, i, mark, polygons):
     """Predict body ``i`` against every candidate (skipping bodies carrying ``mark`` and
     the pairs an island's step solves: both in one island, or one in an island and the
-    other fixed)."""
+    other fixed).
+
+    ``polygons`` is None where no polygon can move (``pge.core.engine.run``): then no
+    pair turns and no two polygons are ever predicted (two fixed bodies never are), and
+    the version compiled for None has no rotating or polygon-polygon kernel in it.
+    """
     F = S.F
     I = S.I
     OL = S.OL
@@ -222,42 +227,49 @@ def predict(S, i, mark):
         jkind = I[j, L.KIND]
         first = i
         second = j
-        if spinning(F, I, i) or spinning(F, I, j):
-            t, feature = _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window, still)
-            if ikind != CIRCLE and jkind == CIRCLE:
-                first = j
-                second = i
-        elif ikind == CIRCLE:
-            if jkind == CIRCLE:
+        t = _INF
+        feature = 0
+        general = False
+        if polygons is not None:
+            # Pruned from the version compiled for None (``if`` on an argument's type).
+            if spinning(F, I, i) or spinning(F, I, j):
+                t, feature = _predict_rotating(S, i, j, dx, dy, dvx, dvy, dax, day, now, window, still)
+                if ikind != CIRCLE and jkind == CIRCLE:
+                    first = j
+                    second = i
+                general = True
+            elif ikind != CIRCLE and jkind != CIRCLE:
+                t, feature = polygon_polygon(
+                    dx,
+                    dy,
+                    dvx,
+                    dvy,
+                    dax,
+                    day,
+                    OL,
+                    I[i, L.OUTLINE_START],
+                    I[i, L.OUTLINE_N],
+                    I[j, L.OUTLINE_START],
+                    I[j, L.OUTLINE_N],
+                    window,
+                    still,
+                )
+                general = True
+        if not general:
+            if ikind == CIRCLE and jkind == CIRCLE:
                 t, feature = circle_circle(dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], F[j, L.RADIUS], window, still)
-            else:
+            elif ikind == CIRCLE:
                 t, feature = circle_polygon(
                     dx, dy, dvx, dvy, dax, day, F[i, L.RADIUS], OL, I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], window,
                     still,
                 )
-        elif jkind == CIRCLE:
-            t, feature = circle_polygon(
-                -dx, -dy, -dvx, -dvy, -dax, -day, F[j, L.RADIUS], OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N], window,
-                still,
-            )
-            first = j
-            second = i
-        else:
-            t, feature = polygon_polygon(
-                dx,
-                dy,
-                dvx,
-                dvy,
-                dax,
-                day,
-                OL,
-                I[i, L.OUTLINE_START],
-                I[i, L.OUTLINE_N],
-                I[j, L.OUTLINE_START],
-                I[j, L.OUTLINE_N],
-                window,
-                still,
-            )
+            else:  # a polygon and a circle (two polygons are the general version's)
+                t, feature = circle_polygon(
+                    -dx, -dy, -dvx, -dvy, -dax, -day, F[j, L.RADIUS], OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N],
+                    window, still,
+                )
+                first = j
+                second = i
         if feature == CHECKPOINT:
             # The rotating search ran out of budget: no contact before now + t; look
             # again from there.
