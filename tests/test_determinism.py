@@ -106,3 +106,35 @@ def test_different_seeds_give_different_traces():
     first = trace_by_events(SEEDS[0], 0.5)[0]
     second = trace_by_events(SEEDS[1], 0.5)[0]
     assert first != second
+
+
+def _disc_world(with_polygon):
+    """Ten discs in a closed box of fixed walls, under gravity, elasticity 1; optionally a
+    movable triangle outside the box, at rest without gravity's reach (it sits on a fixed
+    shelf), which nothing inside can touch."""
+    world = World(gravity=(0.0, -9.81), elasticity=1.0, bounds=(0.0, 0.0, 2.0, 1.0))
+    closed_box(world, thickness=0.1)
+    build_scene(world, random_scene(0, n_circles=10, n_polygons=0, speed=1.0))
+    if with_polygon:
+        world.add_box(1.5, 0.2, 0.4, 0.05, fixed=True)
+        world.add_polygon([(1.6, 0.25), (1.8, 0.25), (1.7, 0.35)], mass=1.0, friction=0.5)
+    return world
+
+
+def test_the_loops_two_compiled_versions_give_the_same_discs():
+    """A world whose polygons are all fixed runs the loop's version without the turning and
+    polygon-polygon kernels (``engine.run`` with ``polygons`` None); a movable polygon
+    anywhere makes it run the general one. The discs' collisions and end states are
+    bit-identical either way."""
+    plain = _disc_world(False)
+    other = _disc_world(True)
+    assert plain._polygons() is None and other._polygons() is True
+    discs = [b.id for b in plain.bodies if b.kind == "circle"]
+    assert len(discs) == 10
+    traces = []
+    for world in (plain, other):
+        trace = [record(e) for e in world.events(2.0) if isinstance(e, Collision) and e.a.id in discs and e.b.id in discs]
+        state = [(b.id, _hex(b.position), _hex(b.velocity)) for b in world.bodies if b.id in discs]
+        traces.append((trace, state))
+    assert len(traces[0][0]) > 10
+    assert traces[0] == traces[1]
