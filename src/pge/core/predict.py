@@ -240,19 +240,8 @@ def predict(S, i, mark, polygons):
                 general = True
             elif ikind != CIRCLE and jkind != CIRCLE:
                 t, feature = polygon_polygon(
-                    dx,
-                    dy,
-                    dvx,
-                    dvy,
-                    dax,
-                    day,
-                    OL,
-                    I[i, L.OUTLINE_START],
-                    I[i, L.OUTLINE_N],
-                    I[j, L.OUTLINE_START],
-                    I[j, L.OUTLINE_N],
-                    window,
-                    still,
+                    dx, dy, dvx, dvy, dax, day, OL, I[i, L.OUTLINE_START], I[i, L.OUTLINE_N],
+                    I[j, L.OUTLINE_START], I[j, L.OUTLINE_N], window, still,
                 )
                 general = True
         if not general:
