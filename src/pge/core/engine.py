@@ -470,7 +470,9 @@ def run(S, until, notify_all, polygons):
     while True:
         if Q[L.FAST_BODY] >= 0:
             return _report(out, P[L.TIME], Q[L.FAST_BODY], -1, L.TOO_FAST)
-        if not drain_predictions(S, polygons) or Q[L.FREE_N] < Q[L.MIN_FREE]:
+        # The call only where bodies wait (after a stale pop none do): a call passes all of S.
+        pending = Q[L.PENDING_DONE] < Q[L.PENDING_N]
+        if (pending and not drain_predictions(S, polygons)) or Q[L.FREE_N] < Q[L.MIN_FREE]:
             return L.NEED_SPACE
         if Q[L.HEAP_N] == 0:
             return L.EMPTY
