@@ -514,7 +514,7 @@ def run(S, until, notify_all, polygons):
         elif kind == L.HORIZON_EVENT:
             stats[L.S_EVENTS] += 1
             stats[L.S_HORIZONS] += 1
-            touch_one(S, a)
+            touch(S, a)  # inlined: most events are horizons
         elif kind == L.TIMER:
             out[L.OUT_TIME] = t
             out[L.OUT_ID] = a
