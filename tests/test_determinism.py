@@ -138,3 +138,25 @@ def test_the_loops_two_compiled_versions_give_the_same_discs():
         traces.append((trace, state))
     assert len(traces[0][0]) > 10
     assert traces[0] == traces[1]
+
+
+def test_the_world_picks_the_loops_version_as_polygons_are_fixed_released_and_removed():
+    """``World._polygons`` (which compiled loop runs) is True exactly while some polygon can move."""
+    world = World(gravity=(0.0, 0.0))
+    closed_box(world, thickness=0.1)
+    ball = world.add_circle((0.5, 0.5), 0.05, mass=1.0, velocity=(1.0, 0.0))
+    assert world._polygons() is None
+    triangle = world.add_polygon([(0.2, 0.2), (0.3, 0.2), (0.25, 0.3)], fixed=True)
+    assert world._polygons() is None
+    world.set_fixed(triangle, False)
+    assert world._polygons() is True
+    world.set_fixed(triangle, True)
+    assert world._polygons() is None
+    world.set_fixed(triangle, False)
+    world.remove(triangle)
+    assert world._polygons() is None
+    square = world.add_polygon([(0.6, 0.2), (0.7, 0.2), (0.7, 0.3), (0.6, 0.3)], mass=1.0)
+    assert world._polygons() is True
+    world.set_fixed(ball, True)
+    world.remove(square)
+    assert world._polygons() is None

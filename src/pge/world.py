@@ -153,6 +153,7 @@ class World:
         self._islands = Islands(self, step)
         self._handles: dict[int, Body] = {}
         self._primed = False
+        self._movable_polygons = 0  # polygons neither fixed nor removed: which loop runs (_polygons)
         self._unchecked: set[int] = set()
         self._collision_callbacks: list[Callable] = []
         self._body_callbacks: dict[int, list[Callable]] = {}
@@ -373,6 +374,7 @@ class World:
             F[i, L.RADIUS] = shape.radius
         else:
             I[i, L.KIND] = POLYGON
+            self._movable_polygons += 0 if fixed else 1
         self._set_inverse_mass(i, shape)
         if isinstance(shape, Polygon):
             rows = outline_rows(shape.vertices)
@@ -424,6 +426,8 @@ class World:
         self._watchers.pop(i, None)
         state = self._state
         was_fixed = bool(state.I[i, L.FIXED])
+        if state.I[i, L.KIND] != CIRCLE and not was_fixed:
+            self._movable_polygons -= 1
         state.I[i, L.COUNT] += 1
         state.I[i, L.ALIVE] = 0
         grid.unlink(state.S, i)
@@ -622,6 +626,8 @@ class World:
             F[i, L.VX], F[i, L.VY] = F[i, L.HELD_VX], F[i, L.HELD_VY]
             F[i, L.OMEGA] = F[i, L.HELD_OMEGA]
             self._unchecked.add(i)
+        if I[i, L.KIND] != CIRCLE:
+            self._movable_polygons += -1 if fixed else 1
         I[i, L.FIXED] = int(fixed)
         self._set_inverse_mass(i)
         self._update_acceleration(i)
@@ -1072,11 +1078,9 @@ class World:
 
     def _polygons(self):
         """None while every polygon is fixed (no pair turns, no two polygons meet), else True:
-        which compiled version of the event loop runs (``engine.run``)."""
-        state = self._state
-        I = state.I[: state.n]
-        moving = (I[:, L.KIND] != CIRCLE) & (I[:, L.FIXED] == 0) & (I[:, L.ALIVE] != 0)
-        return True if moving.any() else None
+        which compiled version of the event loop runs (``engine.run``). Counted where bodies
+        are added, fixed, released and removed: the loop is entered at every island step."""
+        return True if self._movable_polygons else None
 
     # ------------------------------------------------------------- validation
 
