@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -45,7 +46,7 @@ def separating_axis(a: np.ndarray, ax, ay, b: np.ndarray, bx, by) -> float:
 def manifold(a, ax, ay, b, bx, by):
     OL = np.vstack([a, b])
     out = np.zeros((4, NCOLUMNS))
-    count = polygon_polygon_points(ax, ay, OL, 0, a.shape[0], bx, by, a.shape[0], b.shape[0], MARGIN, 1e-3, out, 0)
+    count = polygon_polygon_points(ax, ay, OL, 0, a.shape[0], bx, by, a.shape[0], b.shape[0], MARGIN, 1e-3, 1e-9, out, 0)
     return out[:count]
 
 
@@ -92,3 +93,118 @@ def test_polygons_within_the_margin_always_have_a_manifold_point(na, nb, ra, rb,
         assert rows[:, SEPARATION].min() <= MARGIN
     else:
         assert rows.shape[0] == 0
+
+
+def _sat(a, ax, ay, b, bx, by) -> float:
+    """The largest separation along any face normal of either polygon (negative: overlap)."""
+    return max(separating_axis(a, ax, ay, b, bx, by), separating_axis(b, bx, by, a, ax, ay))
+
+
+def test_a_box_sliding_into_the_foot_of_a_sloping_face_meets_the_slope_s_corner():
+    # A triangle standing on a floor, its left face at 60 degrees, and a box sliding along
+    # the floor towards the triangle's foot: the two bottom corners nearly meet. The box's
+    # face has the larger separation, by less than the face hysteresis, so the triangle's
+    # sloping face was the reference; the box's face dips below its line beyond its foot, the
+    # clipped point's separation (1.15 times the gap) closed at 1.15 times the box's speed,
+    # and an island's step that stopped it at its gap along the slope's normal let the box
+    # into the triangle (corpus scene 113: 1.1e-4).
+    s = math.sqrt(3.0)
+    tri = np.array([[-0.05, -0.05 / s * 1.0, 0.0, -1.0, 0.1],  # (vertex, face normal, length)
+                    [0.05, -0.05 / s, 0.5 * s, 0.5, 0.1],
+                    [0.0, 0.1 / s, -0.5 * s, 0.5, 0.1]])
+    box = np.array([[-0.01, -0.01, 0.0, -1.0, 0.02], [0.01, -0.01, 1.0, 0.0, 0.02],
+                    [0.01, 0.01, 0.0, 1.0, 0.02], [-0.01, 0.01, -1.0, 0.0, 0.02]])
+    foot = (0.0 - 0.05, -0.05 / s)  # the triangle's bottom-left corner, centred at the origin
+    gap = 5e-4
+    bx, by = foot[0] - 0.01 - gap, foot[1] + 0.01  # the box's bottom face level with the foot
+    rows = manifold(tri, 0.0, 0.0, box, bx, by)
+    assert rows.shape[0] >= 1
+    for row in rows:
+        # the box's face is the reference: the normal is along x, and the separation the gap
+        assert abs(abs(row[2]) - 1.0) < 1e-12 and abs(row[3]) < 1e-12
+    assert rows[:, SEPARATION].min() == pytest.approx(gap, abs=1e-12)
+
+
+@settings(max_examples=400, deadline=None)
+@given(
+    na=st.integers(3, 6),
+    nb=st.integers(3, 6),
+    ra=st.floats(0.2, 2.0),
+    rb=st.floats(0.2, 2.0),
+    turn_a=st.floats(0.0, 2.0 * math.pi),
+    turn_b=st.floats(0.0, 2.0 * math.pi),
+    direction=st.floats(0.0, 2.0 * math.pi),
+    gap=st.floats(0.0, 0.9 * MARGIN),
+    move=st.floats(0.0, 2.0 * math.pi),
+    distance=st.floats(0.0, 4.0),
+    corner=st.integers(0, 5),
+)
+def test_a_translation_the_points_allow_never_overlaps(na, nb, ra, rb, turn_a, turn_b, direction, gap, move,
+                                                       distance, corner):
+    """The speculative bound of an island's step: a translation of one polygon that keeps
+    every manifold point's separation plus its normal motion non-negative leaves the two
+    apart (to rounding), for translations up to a few times the gap. Half the draws bring b
+    towards one of a's corners, where corners meet and faces' ends matter."""
+    a = outline(na, ra, turn_a)
+    b = outline(nb, rb, turn_b)
+    if direction < math.pi:
+        direction = turn_a + 2.0 * math.pi * (corner % na) / na + 0.2 * (direction - 0.5 * math.pi)
+    ux, uy = math.cos(direction), math.sin(direction)
+    lo, hi = 0.0, 2.0 * (ra + rb) + 2.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if _sat(a, 0, 0, b, mid * ux, mid * uy) > gap:
+            hi = mid
+        else:
+            lo = mid
+    bx, by = hi * ux, hi * uy
+    rows = manifold(a, 0.0, 0.0, b, bx, by)
+    assert rows.shape[0] >= 1
+    # a moves by (dx, dy) relative to b; the normal runs from b towards a
+    dx = distance * MARGIN * math.cos(move)
+    dy = distance * MARGIN * math.sin(move)
+    allowed = all(row[SEPARATION] + row[2] * dx + row[3] * dy >= 0.0 for row in rows)
+    if allowed:
+        assert _sat(a, dx, dy, b, bx, by) >= -1e-12 * (ra + rb)
+
+
+@settings(max_examples=400, deadline=None)
+@given(
+    na=st.integers(3, 6),
+    nb=st.integers(3, 6),
+    ra=st.floats(0.2, 2.0),
+    rb=st.floats(0.2, 2.0),
+    turn_a=st.floats(0.0, 2.0 * math.pi),
+    corner=st.integers(0, 5),
+    face=st.integers(0, 5),
+    gap=st.floats(0.0, 0.9 * MARGIN),
+    move=st.floats(0.0, 2.0 * math.pi),
+    distance=st.floats(0.0, 4.0),
+)
+def test_a_translation_the_points_allow_never_overlaps_beside_a_corner_on_one_line(na, nb, ra, rb, turn_a, corner,
+                                                                                    face, gap, move, distance):
+    """As above, in the configuration of corpus scene 113: b stands on the line of one of a's
+    faces (a face of b on that line, as two bodies resting on one floor), beside that face's
+    end, ``gap`` away, so that two corners nearly meet."""
+    a = outline(na, ra, turn_a)
+    k = corner % na
+    nxt = (k + 1) % na
+    # a's face k runs from vertex k to k + 1; b lies beyond vertex k along that line
+    ex, ey = a[k, 0] - a[nxt, 0], a[k, 1] - a[nxt, 1]
+    length = math.hypot(ex, ey)
+    ex, ey = ex / length, ey / length
+    g = face % nb
+    # b's face g has a's face k's outward normal: regular outlines' faces point at
+    # turn + (2 g + 1) pi / n
+    normal = math.atan2(a[k, 3], a[k, 2])
+    b = outline(nb, rb, normal - (2 * g + 1) * math.pi / nb)
+    ends = [b[g, :2], b[(g + 1) % nb, :2]]
+    near = min(ends, key=lambda v: v[0] * ex + v[1] * ey)
+    bx = a[k, 0] + gap * ex - near[0]
+    by = a[k, 1] + gap * ey - near[1]
+    rows = manifold(a, 0.0, 0.0, b, bx, by)
+    assert rows.shape[0] >= 1
+    dx = distance * MARGIN * math.cos(move)
+    dy = distance * MARGIN * math.sin(move)
+    if all(row[SEPARATION] + row[2] * dx + row[3] * dy >= 0.0 for row in rows):
+        assert _sat(a, dx, dy, b, bx, by) >= -1e-12 * (ra + rb)

@@ -64,6 +64,7 @@ from pge.core.tuning import (
     BOUNCE_WINDOW,
     CONTACT_MARGIN,
     EXACT_AFTER,
+    FACE_DIP,
     FACE_HYSTERESIS,
     IMPACT_ITERATIONS,
     IMPACT_LCP_LIMIT,
@@ -146,8 +147,9 @@ def _points_at(F, I, OL, i, xi, yi, si, j, xj, yj, sj, margin, rows, count):
     if I[j, L.KIND] == CIRCLE:
         return circle_polygon_points(xj, yj, F[j, L.RADIUS], xi, yi, OL, si, I[i, L.OUTLINE_N], True, margin, rows,
                                      count)
-    tolerance = FACE_HYSTERESIS * (F[i, L.REACH] + F[j, L.REACH])
-    return polygon_polygon_points(xi, yi, OL, si, I[i, L.OUTLINE_N], xj, yj, sj, I[j, L.OUTLINE_N], margin, tolerance,
+    scale = F[i, L.REACH] + F[j, L.REACH]
+    return polygon_polygon_points(xi, yi, OL, si, I[i, L.OUTLINE_N], xj, yj, sj, I[j, L.OUTLINE_N], margin,
+                                  FACE_HYSTERESIS * scale, FACE_DIP * scale,
                                   rows, count)
 
 

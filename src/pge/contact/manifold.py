@@ -88,29 +88,52 @@ def _deepest_face(OL, s1, n1, x1, y1, s2, n2, x2, y2):
 
 
 @njit(cache=True)
-def polygon_polygon_points(ax, ay, OL, sa, na, bx, by, sb, nb, margin, tolerance, out, count):
+def polygon_polygon_points(ax, ay, OL, sa, na, bx, by, sb, nb, margin, tolerance, dip, out, count):
     """Append up to two contact points of polygons a and b (normal from b to a).
 
     The reference face is the face of either polygon with the largest separation (a's unless
     b's is larger by more than ``tolerance``, so that the choice does not flicker between
     steps); the points are the ends of the other polygon's most opposed face, clipped to the
-    reference face's width."""
+    reference face's width. Where the incident face dips towards the reference face's line
+    beyond the face's end by more than ``dip`` (``_face_points``), the reference polygon's
+    corner meets the incident face, and a clipped point's separation is no gap: its speed
+    along the normal is not the rate at which it closes (the clip slides along the incident
+    face). Then the reference is the face with the larger separation (the separating-axis
+    bound of the distance), whatever the hysteresis, and a clipped point's separation is at
+    most its clipped-away end's: along that face's normal no vertex of the other polygon
+    lies closer, so a translation that keeps every point's separation is a translation that
+    keeps the two apart."""
     sep_a, face_a = _deepest_face(OL, sa, na, ax, ay, sb, nb, bx, by)
     if sep_a > margin:
         return count
     sep_b, face_b = _deepest_face(OL, sb, nb, bx, by, sa, na, ax, ay)
     if sep_b > margin:
         return count
-    if sep_b > sep_a + tolerance:
-        rs, rn, rx, ry, face = sb, nb, bx, by, face_b
-        js, jn, jx, jy = sa, na, ax, ay
-        sign = 1.0
-        owner = 0
-    else:
-        rs, rn, rx, ry, face = sa, na, ax, ay, face_a
-        js, jn, jx, jy = sb, nb, bx, by
-        sign = -1.0
-        owner = 1
+    found, dipped = _either_face(OL, sa, na, ax, ay, face_a, sb, nb, bx, by, face_b, sep_b > sep_a + tolerance,
+                                 False, margin, dip, out, count)
+    if not dipped:
+        return found
+    found, _ = _either_face(OL, sa, na, ax, ay, face_a, sb, nb, bx, by, face_b, sep_b > sep_a, True, margin, dip,
+                            out, count)
+    return found
+
+
+@njit(cache=True)
+def _either_face(OL, sa, na, ax, ay, face_a, sb, nb, bx, by, face_b, on_b, cap, margin, dip, out, count):
+    """``_face_points`` with b's face ``face_b`` as the reference if ``on_b``, else a's."""
+    if on_b:
+        return _face_points(OL, sb, nb, bx, by, face_b, sa, na, ax, ay, 1.0, 0, cap, margin, dip, out, count)
+    return _face_points(OL, sa, na, ax, ay, face_a, sb, nb, bx, by, -1.0, 1, cap, margin, dip, out, count)
+
+
+@njit(cache=True)
+def _face_points(OL, rs, rn, rx, ry, face, js, jn, jx, jy, sign, owner, cap, margin, dip, out, count):
+    """Append the points of reference face ``face`` of the polygon at rows ``rs`` (``rn``
+    of them, at ``(rx, ry)``) against the other polygon's most opposed face, clipped to the
+    reference face's width; returns the new count and whether a clipped-away end of the
+    incident face lies closer to the reference face's line than its clipped point, by more
+    than ``dip``. With ``cap``, a clipped point's separation is at most its clipped-away
+    end's."""
     nx = OL[rs + face, 2]
     ny = OL[rs + face, 3]
     v1x = rx + OL[rs + face, 0]
@@ -134,6 +157,9 @@ def polygon_polygon_points(ax, ay, OL, sa, na, bx, by, sb, nb, margin, tolerance
     # Clip the incident segment to the reference face's span [0, width] along its tangent.
     u1 = (w1x - v1x) * tx + (w1y - v1y) * ty
     u2 = (w2x - v1x) * tx + (w2y - v1y) * ty
+    dipped = False
+    cap1 = _INF
+    cap2 = _INF
     for end in range(2):
         lo = 0.0 if end == 0 else width
         if end == 0:
@@ -143,20 +169,28 @@ def polygon_polygon_points(ax, ay, OL, sa, na, bx, by, sb, nb, margin, tolerance
             outside1 = u1 > lo
             outside2 = u2 > lo
         if outside1 and outside2:
-            return _corner_point(OL, rs, rn, rx, ry, face, js, jn, jx, jy, sign, owner, out, count)
+            return _corner_point(OL, rs, rn, rx, ry, face, js, jn, jx, jy, sign, owner, out, count), False
         if outside1 or outside2:
             f = (lo - u1) / (u2 - u1)
             cx = w1x + f * (w2x - w1x)
             cy = w1y + f * (w2y - w1y)
+            clipped = (cx - v1x) * nx + (cy - v1y) * ny
             if outside1:
+                away = (w1x - v1x) * nx + (w1y - v1y) * ny
                 w1x, w1y, u1 = cx, cy, lo
+                if cap:
+                    cap1 = away
             else:
+                away = (w2x - v1x) * nx + (w2y - v1y) * ny
                 w2x, w2y, u2 = cx, cy, lo
+                if cap:
+                    cap2 = away
+            dipped = dipped or away < clipped - dip
     before = count
     for end in range(2):
         wx = w1x if end == 0 else w2x
         wy = w1y if end == 0 else w2y
-        separation = (wx - v1x) * nx + (wy - v1y) * ny
+        separation = min((wx - v1x) * nx + (wy - v1y) * ny, cap1 if end == 0 else cap2)
         if separation > margin:
             continue
         out[count, PX] = wx - 0.5 * separation * nx
@@ -167,8 +201,8 @@ def polygon_polygon_points(ax, ay, OL, sa, na, bx, by, sb, nb, margin, tolerance
         out[count, KEY] = float(((owner * 64 + face) * 64 + incident) * 2 + end)
         count += 1
     if count == before:
-        return _corner_point(OL, rs, rn, rx, ry, face, js, jn, jx, jy, sign, owner, out, count)
-    return count
+        return _corner_point(OL, rs, rn, rx, ry, face, js, jn, jx, jy, sign, owner, out, count), dipped
+    return count, dipped
 
 
 @njit(cache=True)

@@ -26,7 +26,7 @@ from pge.core.motion import advance, orient
 from pge.core.predict import new_mark, place, predict
 from pge.core.queue import pop_earliest
 from pge.core.response import apply_impulse, combine, contact_response
-from pge.core.tuning import CONTACT_MARGIN, FACE_HYSTERESIS, SIMULTANEOUS, STORM_SPAN, STORM_TICKS, TOUCHING
+from pge.core.tuning import CONTACT_MARGIN, FACE_DIP, FACE_HYSTERESIS, SIMULTANEOUS, STORM_SPAN, STORM_TICKS, TOUCHING
 from pge.toi.circle_circle import circle_circle_contact
 from pge.toi.circle_polygon import circle_polygon_contact
 from pge.toi.polygon_polygon import polygon_polygon_contact
@@ -154,7 +154,7 @@ def face_patch(S, a, b, nx, ny, reach):
     count = polygon_polygon_points(
         F[a, L.X], F[a, L.Y], OL, I[a, L.OUTLINE_START], I[a, L.OUTLINE_N],
         F[b, L.X], F[b, L.Y], I[b, L.OUTLINE_START], I[b, L.OUTLINE_N],
-        reach, FACE_HYSTERESIS * (F[a, L.REACH] + F[b, L.REACH]), rows, 0,
+        reach, FACE_HYSTERESIS * (F[a, L.REACH] + F[b, L.REACH]), FACE_DIP * (F[a, L.REACH] + F[b, L.REACH]), rows, 0,
     )
     if count != 2 or rows[0, NX] * nx + rows[0, NY] * ny < 1.0 - 1e-9:
         return False, 0.0, 0.0, 0.0, 0.0

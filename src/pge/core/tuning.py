@@ -87,6 +87,10 @@ TOUCHING = 1e-6
 #: polygons' reference face: the second polygon's face only if its separation is larger by
 #: more than this times the sum of bounding radii (no flicker between steps)
 FACE_HYSTERESIS = 1e-3
+#: ... but not where the incident face dips towards the reference face's line beyond the
+#: face's end by more than this times the sum of bounding radii (the reference polygon's
+#: corner meets the incident face there: the other face is the reference)
+FACE_DIP = 1e-9
 #: an island falls asleep when every body's mean speed (plus spin times reach) stays below
 #: this times sqrt(|acceleration| * reach) for SLEEP_TIME seconds
 SLEEP_SPEED = 0.01
