@@ -67,7 +67,8 @@ def trace(seed: int, until: float, every: float, threshold: float) -> list[dict]
                 pair = frozenset((a.id, b.id))
                 row = first.get(pair)
                 if row is not None:
-                    row["deepest"] = max(row["deepest"], depth)
+                    if depth > row["deepest"]:
+                        row["deepest"], row["deepest_at"] = depth, t
                     continue
                 moving = [i for i in (a.id, b.id) if not state.I[i, L.FIXED]]
                 step, pairs = manifolds.last.get(moving[0], (None, set()))
@@ -76,6 +77,7 @@ def trace(seed: int, until: float, every: float, threshold: float) -> list[dict]
                     "first": t,
                     "depth": depth,
                     "deepest": depth,
+                    "deepest_at": t,
                     "last_step": step,
                     "in_manifold": pair in pairs,
                     "bodies": [
@@ -105,7 +107,7 @@ def main(argv=None) -> None:
     print(f"scene {args.seed}: {len(rows)} pairs overlapped beyond {args.threshold:g} "
           f"(sampled every {args.every:.3g} s up to {args.until:g} s)")
     for row in rows[: args.top]:
-        print(f"pair {row['pair']}: first at {row['first']:.5f} s by {row['depth']:.2e}, deepest {row['deepest']:.2e}; "
+        print(f"pair {row['pair']}: first at {row['first']:.5f} s by {row['depth']:.2e}, deepest {row['deepest']:.2e} at {row['deepest_at']:.5f} s; "
               f"island's last step {row['last_step']}, in its manifold: {row['in_manifold']}")
         for body in row["bodies"]:
             print(f"    {body}")

@@ -70,10 +70,11 @@ SET_TRIES = 3
 #: the exact solve is tried when the problem has at most this many unknowns (a point each,
 #: three for a pair's friction)
 LCP_LIMIT = 240
-#: ... and the impact stage's by Lemke's method when it has at most this many (an inexact
-#: impact stage leaves a little approach for the force stage; on a bigger problem Lemke
-#: costs about a millisecond, most of a step)
-IMPACT_LCP_LIMIT = 64
+#: ... and the impact stage's by Lemke's method when it has at most this many (where the
+#: exact finish fails, the impact stage's sweeps stop after IMPACT_ITERATIONS and leave an
+#: approach that the force stage, whose force is constant over the step, can only turn round
+#: by the step's end: a point still closing at u sinks by u h / 4 at mid-step)
+IMPACT_LCP_LIMIT = 240
 #: a pair is in an island's manifold while its gap is below its step travel plus this times
 #: the smaller bounding radius (so that resting contacts stay listed)
 CONTACT_MARGIN = 0.01
