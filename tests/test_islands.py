@@ -771,6 +771,34 @@ def test_an_active_set_whose_friction_leaves_its_cone_moves_to_sliding():
     assert sliding == pytest.approx((g_along - mu * g_normal) * h, rel=1e-12) and sliding > 0.0
 
 
+@pytest.mark.parametrize("load", [1e-9, 1e-4])
+def test_friction_at_its_cone_s_edge_to_rounding_slides_in_the_solve_s_test(load):
+    """The solve's test of an answer (``_residual``, which an exact answer must pass): a
+    point sliding with its friction at the cone's edge is solved whatever its sliding speed,
+    and the edge allows for rounding at the scale of the problem's largest impulse, not only
+    of the point's own. An answer of Lemke's method whose friction on a point pressed by
+    7e-10 fell short of the edge by 2.6e-18 (beside a point pressed by 0.01) read as sticking
+    at 0.019 m/s and was refused, and the impact stage stopped after its 16 sweeps: corpus
+    scene 93's left a point closing at 0.03 m/s that sank 1e-5 into a neighbour at mid-step.
+    Well inside the cone, the slide is the error, as before."""
+    from pge.contact import island as K
+    from pge.contact.manifold import NY
+
+    rows = np.zeros((2, K.NSOLVE))
+    rows[:, NY] = 1.0  # normals up; the tangent is (-1, 0)
+    rows[0, K.MU] = 0.5
+    rows[0, K.LAMBDA_N] = load
+    rows[1, K.LAMBDA_N] = 0.01  # another body pressed on the floor, without friction
+    pairs = np.array([[0, -1, 0, 2], [1, -1, 1, 2]], dtype=np.int64)
+    starts, sizes, blocks = K._blocks(pairs, 2)
+    vel = np.array([[0.02, 0.0, 0.0], [0.0, 0.0, 0.0]])  # the first slides along +x
+    # short of the edge by 8 ulps of the other point's impulse
+    rows[0, K.LAMBDA_T] = 0.5 * load - 8.0 * math.ulp(0.01)
+    assert K._residual(vel, rows, pairs, 2, starts, sizes, blocks) == 0.0
+    rows[0, K.LAMBDA_T] = 0.25 * load  # well inside the cone: sticking, and it slides
+    assert K._residual(vel, rows, pairs, 2, starts, sizes, blocks) == pytest.approx(0.02, rel=1e-12)
+
+
 def test_a_box_bouncing_on_a_box_resting_on_a_floor_keeps_its_restitution_at_every_bounce():
     """A box (e 0.7, no friction) dropped 5 cm onto a box resting on a floor bounces ever lower
     on it, its peaks falling by e^2 = 0.49 at every bounce, also once the bounces are inside
