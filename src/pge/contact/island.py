@@ -335,10 +335,10 @@ def _end_arcs(S, now, end, rows, pairs, count, h):
     estimates the same at the velocities of now, before the forces are known; a body the
     forces set turning faster or slower (a polygon tipping over a corner at 140 rad/s^2)
     left a few percent of its arc to every step's end (scene 113: 2.5e-8 at each step of a
-    polygon sliding at 0.56 m/s over a box's corner while turning at 1.3 rad/s). Where a
-    pair of two points changes features within the step, the estimate is left (which point
-    is which is not known); where the arc opens the gap, it is zero (as in
-    ``_midstep_rows``)."""
+    polygon sliding at 0.56 m/s over a box's corner while turning at 1.3 rad/s). A row whose
+    features are not in the pair's manifold at the end takes the pair's deepest point there
+    (which point it became is not known; no row may end above the deepest); where the arc
+    opens the gap, it is zero (as in ``_midstep_rows``)."""
     F = S.F
     I = S.I
     OL = S.OL
@@ -359,10 +359,13 @@ def _end_arcs(S, now, end, rows, pairs, count, h):
             at_full, outline = _moved(F, I, OL, OB, mean, pairs, c, h, outline, full)
             for r in range(c, d):
                 e = _match(full, at_full, rows[r, KEY])
-                if e < 0 and d == c + 1 and at_full == 1:
-                    # one point then and one at the end, on other features (a circle passing
-                    # from a polygon's face to its corner): the pair's separation all the same
-                    e = 0
+                if e < 0:
+                    # the features changed within the step (a circle carried from a face to
+                    # its corner, a reference face that passes to the other polygon): the
+                    # pair's deepest point at the end, which no row may end above
+                    for q in range(at_full):
+                        if e < 0 or full[q, SEPARATION] < full[e, SEPARATION]:
+                            e = q
                 if e < 0:
                     continue
                 ux, uy = _relative(now, pairs, rows, r)
