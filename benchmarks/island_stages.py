@@ -88,7 +88,7 @@ def timed_step_island(clock):
         K._end_targets(rows, now, pairs, count)
         sweeps += timed("forces (solve)", K._solve, F, end, rows, pairs, count, speed, down_x, down_y,
                         K.ISLAND_ITERATIONS, K.LCP_LIMIT)
-        timed("end arcs", K._end_arcs, S, now, end, rows, pairs, count, h)
+        timed("arcs (end and inside)", K._solved_arcs, S, now, end, rows, pairs, count, h)
         lift, pushes = timed("push-out", K._push_out, F, now, end, rows, pairs, count, h, natural, down_x, down_y)
         sweeps += pushes
         labels, fastest, deepest = timed("finish (touch)", K._finish, S, members, local, now, end, lift, rows,

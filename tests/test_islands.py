@@ -860,7 +860,7 @@ def test_a_plank_rocking_on_a_cylinder_never_sinks_into_it_and_gains_no_energy(s
 
 @pytest.mark.parametrize("spin", [1.0, 2.0, 4.0])
 def test_a_plank_rocking_on_a_cylinder_ends_every_step_touching_it(monkeypatch, spin):
-    """The arcs of stage 8 found again on the step's solved motion (``_end_arcs``): the
+    """The arcs of stage 8 found again on the step's solved motion (``_solved_arcs``): the
     plank's end pose is closed form under the step's forces, so the push-out holds the
     contact there, not at an estimate made at the velocities of the step's start (which
     left 8e-9 to 1.1e-7 at every step's end, rising with the spin). Measured at each step's

@@ -30,7 +30,7 @@ Trinkle's formulation.
 Stages: ``_start`` (bodies to ``t``, velocities now, travel margins), ``_collect`` (the
 manifold), ``_until_contact`` (the step's length: shorter where a bouncing impact is due),
 ``_prepare`` (lever arms, effective masses, targets, last step's impulses),
-``_impacts``, ``_end_targets`` and ``_solve`` (the forces), ``_end_arcs`` (what a turning
+``_impacts``, ``_end_targets`` and ``_solve`` (the forces), ``_solved_arcs`` (what a turning
 pair's straight lines miss on the solved motion), ``_push_out``, ``_finish``
 (accelerations from the forces and the push-out, the island's parts and the bodies that left
 it, the touch).
@@ -80,6 +80,7 @@ from pge.core.tuning import (
     SHORTEST_STEP,
     SIMULTANEOUS,
     SOLVE_TOLERANCE,
+    STEP_INSTANTS,
     TOUCHING,
 )
 
@@ -327,18 +328,45 @@ def _midstep_rows(S, now, rows, pairs, count, h):
 
 
 @njit(cache=True)
-def _end_arcs(S, now, end, rows, pairs, count, h):
-    """Each turning pair's ``ARC`` found again on the step's solved motion: the pair's
-    manifold found with the outlines moved on by ``h`` at the mean of the velocities and
-    spins ``now`` and at the step's ``end`` (the closed-form pose the contact forces bring
-    them to), less the straight line of the point's mean normal speed. ``_midstep_rows``
-    estimates the same at the velocities of now, before the forces are known; a body the
-    forces set turning faster or slower (a polygon tipping over a corner at 140 rad/s^2)
-    left a few percent of its arc to every step's end (scene 113: 2.5e-8 at each step of a
-    polygon sliding at 0.56 m/s over a box's corner while turning at 1.3 rad/s). A row whose
-    features are not in the pair's manifold at the end takes the pair's deepest point there
-    (which point it became is not known; no row may end above the deepest); where the arc
-    opens the gap, it is zero (as in ``_midstep_rows``)."""
+def _deepest(out, found, key):
+    """The point with ``key`` among the first ``found`` of ``out``; where there is none (the
+    features changed), the deepest of them; -1 if there are none."""
+    e = _match(out, found, key)
+    if e < 0:
+        for q in range(found):
+            if e < 0 or out[q, SEPARATION] < out[e, SEPARATION]:
+                e = q
+    return e
+
+
+@njit(cache=True)
+def _solved_arcs(S, now, end, rows, pairs, count, h):
+    """Each point's ``ARC`` found again on the step's solved motion, so that the push-out
+    holds its gap at the step's end and inside it.
+
+    At the end: a turning pair's manifold found with the outlines moved on by ``h`` at the
+    mean of the velocities and spins ``now`` and at the step's ``end`` (the closed-form pose
+    the contact forces bring them to), less the straight line of the point's mean normal
+    speed. ``_midstep_rows`` estimates the same at the velocities of now, before the forces
+    are known; a body the forces set turning faster or slower (a polygon tipping over a
+    corner at 140 rad/s^2) left a few percent of its arc to every step's end (scene 113:
+    2.5e-8 at each step of a polygon sliding at 0.56 m/s over a box's corner while turning
+    at 1.3 rad/s). A row whose features are not in the pair's manifold at the end takes the
+    pair's deepest point there (which point it became is not known; no row may end above
+    the deepest); where the arc opens the gap, it is zero (as in ``_midstep_rows``).
+
+    Inside: at the instants ``STEP_INSTANTS`` of the step, a turning pair's gaps on the same
+    motion (its manifold found again at that pose) must be no deeper than the point's
+    overlap at the start, nor than its straight line goes there (a speculative gap the force
+    stage closes only by the step's end is the step's to close: lifting it would lift a box
+    landing on another against gravity, with no work to pay for it).
+    The push-out's lift, a speed taken back over the step, has moved a point by
+    ``lift (s - s^2 / 2h)`` at ``s``, three quarters of its end displacement at mid-step, so
+    a deficit ``D`` at ``s`` asks ``D h / (2 s - s^2 / h)`` of it at the end, and the arc
+    asks for the largest of these. A gap that closes and opens again within the step (a
+    circle sliding at 0.7 m/s on a polygon that turns under it at 130 rad/s^2, corpus scene
+    15: 7.4e-6 at mid-step) is held at these instants; between them it may dip by what its
+    curve does there."""
     F = S.F
     I = S.I
     OL = S.OL
@@ -346,6 +374,8 @@ def _end_arcs(S, now, end, rows, pairs, count, h):
     mean = 0.5 * (now + end)
     outline = np.empty((16, OL.shape[1]))
     full = np.empty((4, NCOLUMNS))
+    inside = np.empty((len(STEP_INSTANTS), 4, NCOLUMNS))
+    found = np.zeros(len(STEP_INSTANTS), dtype=np.int64)
     c = 0
     while c < count:
         i = pairs[c, 2]
@@ -355,23 +385,45 @@ def _end_arcs(S, now, end, rows, pairs, count, h):
             d += 1
         wi = mean[pairs[c, 0], 2]
         wj = mean[pairs[c, 1], 2] if pairs[c, 1] >= 0 else 0.0
-        if (I[i, L.KIND] != CIRCLE and wi != 0.0) or (I[j, L.KIND] != CIRCLE and wj != 0.0):
+        turning = (I[i, L.KIND] != CIRCLE and wi != 0.0) or (I[j, L.KIND] != CIRCLE and wj != 0.0)
+        at_full = 0
+        if turning:
             at_full, outline = _moved(F, I, OL, OB, mean, pairs, c, h, outline, full)
-            for r in range(c, d):
-                e = _match(full, at_full, rows[r, KEY])
-                if e < 0:
-                    # the features changed within the step (a circle carried from a face to
-                    # its corner, a reference face that passes to the other polygon): the
-                    # pair's deepest point at the end, which no row may end above
-                    for q in range(at_full):
-                        if e < 0 or full[q, SEPARATION] < full[e, SEPARATION]:
-                            e = q
-                if e < 0:
+            for k in range(len(STEP_INSTANTS)):
+                s = STEP_INSTANTS[k] * h
+                # the pose at s under constant acceleration: moved on for s at the speed of
+                # now plus half of what the step adds by then
+                moving = now + (end - now) * (0.5 * s / h)
+                found[k], outline = _moved(F, I, OL, OB, moving, pairs, c, s, outline, inside[k])
+        for r in range(c, d):
+            ux, uy = _relative(now, pairs, rows, r)
+            wx, wy = _relative(end, pairs, rows, r)
+            u0 = ux * rows[r, NX] + uy * rows[r, NY]
+            u1 = wx * rows[r, NX] + wy * rows[r, NY]
+            line = rows[r, SEPARATION] + 0.5 * h * (u0 + u1)
+            if turning:
+                e = _deepest(full, at_full, rows[r, KEY])
+                if e >= 0:
+                    rows[r, ARC] = min(full[e, SEPARATION] - line, 0.0)
+            if not turning:
+                continue  # the straight line is the motion
+            floor = min(rows[r, SEPARATION], 0.0)
+            asked = 0.0  # the end displacement the instants inside ask of the lift
+            for k in range(len(STEP_INSTANTS)):
+                s = STEP_INSTANTS[k] * h
+                # the same features only: a point of other features may be a corner beyond a
+                # face's end, whose separation along that face's normal is no gap
+                q = _match(inside[k], found[k], rows[r, KEY])
+                if q < 0:
                     continue
-                ux, uy = _relative(now, pairs, rows, r)
-                wx, wy = _relative(end, pairs, rows, r)
-                line = rows[r, SEPARATION] + 0.5 * h * ((ux + wx) * rows[r, NX] + (uy + wy) * rows[r, NY])
-                rows[r, ARC] = min(full[e, SEPARATION] - line, 0.0)
+                # no deeper than the start's overlap, nor than the straight line goes (a gap
+                # the force stage closes only by the step's end is its to close)
+                straight = rows[r, SEPARATION] + s * u0 + (u1 - u0) * s * s / (2.0 * h)
+                lowest = min(floor, straight)
+                if inside[k, q, SEPARATION] < lowest:
+                    asked = max(asked, (lowest - inside[k, q, SEPARATION]) * h / (2.0 * s - s * s / h))
+            if asked > 0.0:
+                rows[r, ARC] = min(rows[r, ARC], -asked - line)
         c = d
 
 
@@ -1767,7 +1819,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         end[k, 2] = now[k, 2]
     _end_targets(rows, now, pairs, count)
     sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS, LCP_LIMIT)
-    _end_arcs(S, now, end, rows, pairs, count, h)
+    _solved_arcs(S, now, end, rows, pairs, count, h)
     lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y)
     sweeps += pushes
     labels, fastest, deepest = _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed)

@@ -80,6 +80,9 @@ IMPACT_LCP_LIMIT = 240
 CONTACT_MARGIN = 0.01
 #: the part of an overlap a step pushes out (the rest at the following steps)
 PUSH_RATE = 0.8
+#: the instants inside a step, as fractions of it, where the push-out holds each point's gap
+#: on the step's solved motion as well as at its end (pge.contact.island._solved_arcs)
+STEP_INSTANTS = (0.25, 0.5, 0.75)
 #: ... where some point overlaps by more than this times its pair's smaller bounding radius
 #: (overlaps of rounding's size are only kept from growing)
 PUSH_SLOP = 1e-10
