@@ -134,6 +134,18 @@ def test_an_impact_taken_into_an_island_is_taken_once_per_instant():
     assert world.time == 2.5 and world.stats["collisions"] < 1000
 
 
+def _deepest_overlap(seed, until):
+    """The deepest overlap of any pair in corpus scene ``seed`` up to ``until``, sampled 8
+    times an island step."""
+    world = corpus.scene(seed)
+    deepest, t = 0.0, 0.0
+    while t < until:
+        t += 1.0 / 1920.0
+        world.run_until(t)
+        deepest = max([deepest] + [depth for _, _, depth in world.overlaps(0.0)])
+    return deepest
+
+
 def test_a_circle_passing_a_turning_polygon_s_corner_within_a_step_is_held_at_its_end():
     """Corpus scene 192 at 0.45-0.50 s: a polygon turning at 178 rad/s^2 carries its corner
     under a spinning circle within one step, so the pair's one point is on the face at the
@@ -141,13 +153,7 @@ def test_a_circle_passing_a_turning_polygon_s_corner_within_a_step_is_held_at_it
     (``_solved_arcs``) took only points whose features stay; the circle sank 9.7e-6 into the
     corner by the step's end. A pair with one point then and one at the end keeps the arc
     of its separation whatever the features: 4.4e-7 (sampled 8 times a step)."""
-    world = corpus.scene(192)
-    deepest, t = 0.0, 0.0
-    while t < 0.6:
-        t += 1.0 / 1920.0
-        world.run_until(t)
-        deepest = max([deepest] + [depth for _, _, depth in world.overlaps(0.0)])
-    assert deepest < 1e-6
+    assert _deepest_overlap(192, 0.6) < 1e-6
 
 
 def test_a_pair_whose_reference_face_passes_to_the_other_polygon_within_a_step_is_held_at_its_end():
@@ -157,13 +163,7 @@ def test_a_pair_whose_reference_face_passes_to_the_other_polygon_within_a_step_i
     manifold at the step's end; the arcs left them alone and the pair sank 8.3e-6 into each
     other. Each row now ends no higher than the pair's deepest point at the end: 1.2e-6 in
     the scene's first 3.1 s (sampled 8 times a step)."""
-    world = corpus.scene(83)
-    deepest, t = 0.0, 0.0
-    while t < 3.1:
-        t += 1.0 / 1920.0
-        world.run_until(t)
-        deepest = max([deepest] + [depth for _, _, depth in world.overlaps(0.0)])
-    assert deepest < 3e-6
+    assert _deepest_overlap(83, 3.1) < 3e-6
 
 
 def test_a_gap_that_closes_and_opens_again_within_a_step_is_held_inside_it():
@@ -172,10 +172,4 @@ def test_a_gap_that_closes_and_opens_again_within_a_step_is_held_inside_it():
     by its end, which is all the push-out held. Now a turning pair's gaps are held at a
     quarter, half and three quarters of the step too (``STEP_INSTANTS``): 8.7e-7 over the
     scene's first 3 s (sampled 8 times a step)."""
-    world = corpus.scene(15)
-    deepest, t = 0.0, 0.0
-    while t < 3.0:
-        t += 1.0 / 1920.0
-        world.run_until(t)
-        deepest = max([deepest] + [depth for _, _, depth in world.overlaps(0.0)])
-    assert deepest < 2e-6
+    assert _deepest_overlap(15, 3.0) < 2e-6

@@ -254,6 +254,25 @@ def _lever_arms(rows, r, rax, ray, rbx, rby):
     rows[r, KT] = rows[r, MA] + rows[r, MB] + rows[r, IA] * rat * rat + rows[r, IB] * rbt * rbt
 
 
+@njit(cache=True, inline="always")
+def _pair_end(pairs, count, c):
+    """The row after the last of the pair whose first row is ``c`` (a pair's rows are
+    adjacent)."""
+    d = c + 1
+    while d < count and pairs[d, 2] == pairs[c, 2] and pairs[d, 3] == pairs[c, 3]:
+        d += 1
+    return d
+
+
+@njit(cache=True, inline="always")
+def _turning_pair(I, velocities, pairs, c):
+    """Whether a polygon of row ``c``'s pair turns at the spins in ``velocities`` (a
+    circle's spin does not move its outline)."""
+    wi = velocities[pairs[c, 0], 2]
+    wj = velocities[pairs[c, 1], 2] if pairs[c, 1] >= 0 else 0.0
+    return (I[pairs[c, 2], L.KIND] != CIRCLE and wi != 0.0) or (I[pairs[c, 3], L.KIND] != CIRCLE and wj != 0.0)
+
+
 @njit(cache=True)
 def _midstep_rows(S, now, rows, pairs, count, h):
     """Where a polygon of a pair turns, the step's rows of that pair act where the contact
@@ -292,16 +311,10 @@ def _midstep_rows(S, now, rows, pairs, count, h):
     moved = False
     c = 0
     while c < count:
-        i = pairs[c, 2]
-        j = pairs[c, 3]
-        d = c + 1
-        while d < count and pairs[d, 2] == i and pairs[d, 3] == j:
-            d += 1
+        d = _pair_end(pairs, count, c)
         for r in range(c, d):
             rows[r, ARC] = 0.0
-        wi = now[pairs[c, 0], 2]
-        wj = now[pairs[c, 1], 2] if pairs[c, 1] >= 0 else 0.0
-        if (I[i, L.KIND] != CIRCLE and wi != 0.0) or (I[j, L.KIND] != CIRCLE and wj != 0.0):
+        if _turning_pair(I, now, pairs, c):
             at_half, outline = _moved(F, I, OL, OB, now, pairs, c, 0.5 * h, outline, half)
             at_full, outline = _moved(F, I, OL, OB, now, pairs, c, h, outline, full)
             for r in range(c, d):
@@ -378,14 +391,8 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
     found = np.zeros(len(STEP_INSTANTS), dtype=np.int64)
     c = 0
     while c < count:
-        i = pairs[c, 2]
-        j = pairs[c, 3]
-        d = c + 1
-        while d < count and pairs[d, 2] == i and pairs[d, 3] == j:
-            d += 1
-        wi = mean[pairs[c, 0], 2]
-        wj = mean[pairs[c, 1], 2] if pairs[c, 1] >= 0 else 0.0
-        turning = (I[i, L.KIND] != CIRCLE and wi != 0.0) or (I[j, L.KIND] != CIRCLE and wj != 0.0)
+        d = _pair_end(pairs, count, c)
+        turning = _turning_pair(I, mean, pairs, c)
         at_full = 0
         if turning:
             at_full, outline = _moved(F, I, OL, OB, mean, pairs, c, h, outline, full)
