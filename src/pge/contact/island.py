@@ -385,6 +385,11 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
     OL = S.OL
     OB = S.OB
     mean = 0.5 * (now + end)
+    # the poses at the instants inside, under constant acceleration: moved on for s at the
+    # speed of now plus half of what the step adds by then
+    moving = np.empty((len(STEP_INSTANTS),) + now.shape)
+    for k in range(len(STEP_INSTANTS)):
+        moving[k] = now + (end - now) * (0.5 * (STEP_INSTANTS[k] * h) / h)
     outline = np.empty((16, OL.shape[1]))
     full = np.empty((4, NCOLUMNS))
     inside = np.empty((len(STEP_INSTANTS), 4, NCOLUMNS))
@@ -392,28 +397,21 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
     c = 0
     while c < count:
         d = _pair_end(pairs, count, c)
-        turning = _turning_pair(I, mean, pairs, c)
-        at_full = 0
-        if turning:
-            at_full, outline = _moved(F, I, OL, OB, mean, pairs, c, h, outline, full)
-            for k in range(len(STEP_INSTANTS)):
-                s = STEP_INSTANTS[k] * h
-                # the pose at s under constant acceleration: moved on for s at the speed of
-                # now plus half of what the step adds by then
-                moving = now + (end - now) * (0.5 * s / h)
-                found[k], outline = _moved(F, I, OL, OB, moving, pairs, c, s, outline, inside[k])
+        if not _turning_pair(I, mean, pairs, c):
+            c = d
+            continue  # the straight lines are the motion
+        at_full, outline = _moved(F, I, OL, OB, mean, pairs, c, h, outline, full)
+        for k in range(len(STEP_INSTANTS)):
+            found[k], outline = _moved(F, I, OL, OB, moving[k], pairs, c, STEP_INSTANTS[k] * h, outline, inside[k])
         for r in range(c, d):
             ux, uy = _relative(now, pairs, rows, r)
             wx, wy = _relative(end, pairs, rows, r)
             u0 = ux * rows[r, NX] + uy * rows[r, NY]
             u1 = wx * rows[r, NX] + wy * rows[r, NY]
             line = rows[r, SEPARATION] + 0.5 * h * (u0 + u1)
-            if turning:
-                e = _deepest(full, at_full, rows[r, KEY])
-                if e >= 0:
-                    rows[r, ARC] = min(full[e, SEPARATION] - line, 0.0)
-            if not turning:
-                continue  # the straight line is the motion
+            e = _deepest(full, at_full, rows[r, KEY])
+            if e >= 0:
+                rows[r, ARC] = min(full[e, SEPARATION] - line, 0.0)
             floor = min(rows[r, SEPARATION], 0.0)
             asked = 0.0  # the end displacement the instants inside ask of the lift
             for k in range(len(STEP_INSTANTS)):
@@ -1555,7 +1553,8 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     ``IMPACT`` targets, from zero impulses, but its sweeps stop after
     ``IMPACT_ITERATIONS`` where the exact finish fails (more than ``IMPACT_LCP_LIMIT``
     unknowns, or an answer that fails the sweeps' test), and the approach they leave is the
-    force stage's to stop (by the step's end: a point still closing sinks in mid-step). The rows' warm-start impulses are left as they were (their
+    force stage's to stop (by the step's end: a point still closing sinks in mid-step).
+    The rows' warm-start impulses are left as they were (their
     ``TARGET`` is the impact stage's scratch: the force stage sets it afterwards,
     ``_force_targets``). Returns the number of sweeps and each point's normal impulse."""
     struck = np.zeros(count)
