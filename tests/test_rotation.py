@@ -860,14 +860,19 @@ def test_energy_never_increases_at_collisions_without_gravity(seed, count):
     assert result["first_bad"] is None, f"energy gain {result['first_bad']}"
 
 
-@pytest.mark.parametrize("seed, count, gravity", [(22701449, 9, False), (58, 10, True), (170, 10, True)])
+@pytest.mark.parametrize(
+    "seed, count, gravity", [(22701449, 9, False), (60789, 12, False), (58, 10, True), (170, 10, True)]
+)
 def test_spinning_scenes_with_islands_gain_no_energy_at_collisions(seed, count, gravity):
     """Scenes that gained energy between collisions: an island's step
     cut short (by a bounce) pushed an overlap out with a lift as large as the overlap over the
     short step, and the lift showed as kinetic energy (+7.9 % in the first scene). The
     push-out's rate is now per natural step: without gravity no collision shows a gain; with
     it, none beyond a step's integration error (docs/contact.md, "Energy": 2e-7 of the
-    scene's energy)."""
+    scene's energy). In the second, a circle riding a turning polygon without gravity gained
+    1e-11 of the scene's energy at every step (friction stopping at each step's end a slip
+    its point had at the start), +1.2e-10 by a collision 15 steps later: the energy stage
+    takes such work out."""
     result = guarded(run_energy_scene, seed, count, gravity)
     assert result["worst"] <= (ISLAND_ENERGY if gravity else ENERGY), f"energy gain {result['first_bad']}"
     assert result["collisions"] > 50

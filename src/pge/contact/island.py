@@ -64,6 +64,7 @@ from pge.numerics.lcp import lemke
 from pge.core.tuning import (
     BOUNCE_WINDOW,
     CONTACT_MARGIN,
+    ENERGY_ROUNDING,
     EXACT_AFTER,
     FACE_DIP,
     FACE_HYSTERESIS,
@@ -1445,12 +1446,98 @@ def _guard(F, members, before, after):
 
 
 @njit(cache=True)
-def _parts(pairs, count, m):
+def _no_gain(F, members, now, end, rows, pairs, count, h):
+    """The energy stage: over the step the contact forces may do no positive work. Each
+    body's acceleration is constant over the step, so their work is exact from the
+    velocities at its two ends: the kinetic energy at the end (``end``) less the one now
+    (``now``), less what each body's own acceleration and gravity do over its displacement
+    ``h (now + end) / 2``. A normal force does none by construction (its target bounds the
+    point's mean speed, ``_end_targets``); friction can: a row that sticks at the step's end
+    may have slipped at its start where the row acts (a turning body's rows act at mid-step),
+    and a force constant over the step works on the slip's mean. So for each group of bodies
+    the step's forces join (a part), where the work is positive beyond rounding, the part's
+    velocities relative to its support (zero where a force joins it to a fixed body, else
+    its centre of mass, whose momentum stays) and its spins are scaled by the factor that
+    takes the work out: a point that sticks still sticks, a body no force touches keeps its
+    motion. Where even stopping the part's relative motion would not take it out (a point
+    rising slower than the step's own acceleration stops it, held at the step's end: the
+    float of docs/contact.md, "Energy"), the part is left as it is. Returns how many parts
+    were scaled."""
+    m = members.shape[0]
+    pressed = np.empty(count, dtype=np.bool_)
+    for c in range(count):
+        pressed[c] = rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0
+    labels = _parts(pairs, pressed, count, m)
+    grounded = np.zeros(m, dtype=np.bool_)
+    for c in range(count):
+        if pressed[c] and pairs[c, 1] < 0:
+            grounded[labels[pairs[c, 0]]] = True
+    # per part (at its root's index): mass and momentum, then the energy account
+    total = np.zeros(m)
+    rx = np.zeros(m)
+    ry = np.zeros(m)
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and not grounded[r]:
+            mass = 1.0 / F[members[k], L.INV_MASS]
+            total[r] += mass
+            rx[r] += mass * end[k, 0]
+            ry[r] += mass * end[k, 1]
+    for r in range(m):
+        if total[r] > 0.0:
+            rx[r] /= total[r]
+            ry[r] /= total[r]
+    before = np.zeros(m)  # kinetic energy now
+    relative = np.zeros(m)  # kinetic energy at the end relative to the support
+    along = np.zeros(m)  # work of the bodies' own accelerations on that relative motion
+    rest = np.zeros(m)  # their work on the rest of the displacement
+    scale = np.zeros(m)
+    for k in range(m):
+        r = labels[k]
+        if r < 0:
+            continue
+        i = members[k]
+        mass = 1.0 / F[i, L.INV_MASS]
+        ax = 0.5 * h * mass * F[i, L.FREE_AX]
+        ay = 0.5 * h * mass * F[i, L.FREE_AY]
+        before[r] += _kinetic(F, i, now[k, 0], now[k, 1], now[k, 2])
+        relative[r] += _kinetic(F, i, end[k, 0] - rx[r], end[k, 1] - ry[r], end[k, 2])
+        along[r] += ax * (end[k, 0] - rx[r]) + ay * (end[k, 1] - ry[r])
+        rest[r] += ax * (now[k, 0] + rx[r]) + ay * (now[k, 1] + ry[r])
+        scale[r] += abs(ax * (now[k, 0] + end[k, 0]) + ay * (now[k, 1] + end[k, 1]))
+    factor = np.ones(m)
+    scaled = 0
+    for r in range(m):
+        kept = before[r] + rest[r] - 0.5 * total[r] * (rx[r] * rx[r] + ry[r] * ry[r])
+        gain = relative[r] - along[r] - kept
+        if gain <= ENERGY_ROUNDING * (before[r] + scale[r]) or kept < 0.0 or relative[r] <= 0.0:
+            continue
+        # the larger root of relative s^2 - along s - kept = 0, in the form that does not cancel
+        root = math.sqrt(along[r] * along[r] + 4.0 * relative[r] * kept)
+        if along[r] >= 0.0:
+            factor[r] = min((along[r] + root) / (2.0 * relative[r]), 1.0)
+        else:
+            factor[r] = min(2.0 * kept / (root - along[r]), 1.0)
+        if factor[r] < 1.0:
+            scaled += 1
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and factor[r] < 1.0:
+            end[k, 0] = rx[r] + factor[r] * (end[k, 0] - rx[r])
+            end[k, 1] = ry[r] + factor[r] * (end[k, 1] - ry[r])
+            end[k, 2] *= factor[r]
+    return scaled
+
+
+@njit(cache=True)
+def _parts(pairs, joins, count, m):
     """Each body's part of the island: union-find over the contacts between its bodies
-    (the root's local index; -1 for a body with no contact at all)."""
+    whose ``joins`` is set (the root's local index; -1 for a body with no such contact)."""
     parent = np.arange(m)
     touched = np.zeros(m, dtype=np.bool_)
     for c in range(count):
+        if not joins[c]:
+            continue
         ka = pairs[c, 0]
         kb = pairs[c, 1]
         touched[ka] = True
@@ -1489,7 +1576,7 @@ def _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed):
     its pair."""
     F = S.F
     I = S.I
-    labels = _parts(pairs, count, members.shape[0])
+    labels = _parts(pairs, np.ones(count, dtype=np.bool_), count, members.shape[0])
     pushed = np.zeros(members.shape[0], dtype=np.bool_)
     # slipping at a contact with friction that presses on it (an impulse that changes a
     # speed by less than the solve's own tolerance is rounding, not a press)
@@ -1825,6 +1912,7 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
         end[k, 2] = now[k, 2]
     _end_targets(rows, now, pairs, count)
     sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS, LCP_LIMIT)
+    _no_gain(F, members, now, end, rows, pairs, count, h)
     _solved_arcs(S, now, end, rows, pairs, count, h)
     lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y)
     sweeps += pushes

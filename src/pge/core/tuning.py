@@ -52,6 +52,10 @@ BOUNCE_WINDOW = 0.25
 #: points of an island whose gaps close within this fraction of ISLAND_STEP of each other
 #: take their impacts together (a face landing level to rounding lands as a face)
 SIMULTANEOUS = 1e-3
+#: the contact forces of an island's step may do positive work only within this fraction of
+#: the island's kinetic energy and the work its accelerations do over the step (rounding);
+#: beyond it the energy stage (``_no_gain``) scales the island's relative velocities back
+ENERGY_ROUNDING = 1e-13
 #: at most this many sweeps of the sequential-impulse solve at each step (it always returns)
 ISLAND_ITERATIONS = 400
 #: at most this many sweeps of the impact stage (inelastic, so every sweep only takes kinetic
