@@ -1683,6 +1683,40 @@ def _end_targets(rows, now, pairs, count):
         rows[c, TARGET] = 2.0 * rows[c, TARGET] - (ux * rows[c, NX] + uy * rows[c, NY])
 
 
+@njit(cache=True, inline="always")
+def _lift_floor(start, now, end, h):
+    """The least normal speed a lift may give a point whose gap moves from ``start`` with
+    normal speed ``now`` to speed ``end`` over a step of length ``h`` (the force stage's
+    straight line), so that the gap never goes below ``min(start, 0)`` within the step. A
+    lift ``l`` (taken back linearly over the step) moves the point by ``l h (s - s^2 / 2)``
+    at ``s`` of the step, front-loaded, while the forces' own opening ``h (now s + (end -
+    now) s^2 / 2)`` may come late: a lift that closes the gap by the end's opening sinks the
+    point by up to ``h (end - now) / 4`` on the way. The bound is the least over ``s`` in
+    (0, 1] of ``-(gap(s) - floor) / (h (s - s^2 / 2))``, at the end or where its derivative
+    vanishes, ``h end s^2 / 2 + g0 s - g0 = 0`` (``g0 = max(start, 0)``); with ``g0 = 0``
+    the least is approached as ``s`` goes to 0, ``-now``. Returns a bound from below
+    (negative: the lift may close the point by that speed)."""
+    g0 = max(start, 0.0)
+    least = (g0 + 0.5 * h * (now + end)) / (0.5 * h)  # at the end
+    # the roots of (h end / 2) s^2 + g0 s - g0 = 0, scaled by g0 so that a gap of rounding's
+    # size (or a denormal) cannot overflow them; where the first is lost below the smallest
+    # double the least is the limit at s = 0
+    at_zero = g0 == 0.0
+    if g0 > 0.0:
+        ratio = 2.0 * h * end / g0
+        if 1.0 + ratio >= 0.0:
+            wide = math.sqrt(1.0 + ratio)
+            first = 2.0 / (1.0 + wide)
+            second = -2.0 * (1.0 + wide) / ratio if ratio != 0.0 else -1.0
+            at_zero = first == 0.0
+            for s in (first, second):
+                if 0.0 < s <= 1.0:
+                    least = min(least, (g0 + h * (now * s + 0.5 * (end - now) * s * s)) / (h * (s - 0.5 * s * s)))
+    if at_zero:
+        least = min(least, now)
+    return -least
+
+
 @njit(cache=True)
 def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
     """The push-out stage: each body's velocity change ``lift`` at the step's start that
@@ -1699,7 +1733,8 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
     at least ``PUSH_RATE`` of ``-e`` per ``nominal`` step length (the island's step before
     any cut for a bounce: ``h / nominal`` of that in a step cut shorter, so that the lift,
     a speed, stays within ``2 PUSH_RATE |e| / nominal``) where ``e < 0``, closed by at most
-    ``e`` where ``e >= 0``. A point's ``ARC`` (``_midstep_rows``: what a turning body's
+    ``e`` where ``e >= 0``, and no deeper than its start anywhere within the step
+    (``_lift_floor``: a lift is front-loaded, the forces' opening may come late). A point's ``ARC`` (``_midstep_rows``: what a turning body's
     contact adds to the straight line's end separation) is an overlap the step would make,
     not one it found: all of it is moved out at this step. Nothing is solved unless some
     point would overlap by more than ``PUSH_SLOP`` of its pair's smaller reach. Returns the
@@ -1717,7 +1752,11 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
         if left < 0.0:
             need[c] = -2.0 * (PUSH_RATE * left / nominal + arc / h)
         else:
-            need[c] = -2.0 * (left + arc) / h
+            un = ux * rows[c, NX] + uy * rows[c, NY]
+            wn = wx * rows[c, NX] + wy * rows[c, NY]
+            # never a push for this: a point whose own line dips (closing now) is the force
+            # stage's, and a lift does not close it further
+            need[c] = max(-2.0 * (left + arc) / h, min(_lift_floor(rows[c, SEPARATION], un, wn, h), 0.0))
         reach = min(F[pairs[c, 2], L.REACH], F[pairs[c, 3], L.REACH])
         if left + arc < -PUSH_SLOP * reach:
             largest = max(largest, need[c])
