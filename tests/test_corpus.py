@@ -174,22 +174,3 @@ def test_a_gap_that_closes_and_opens_again_within_a_step_is_held_inside_it():
     quarter, half and three quarters of the step too (``STEP_INSTANTS``): 8.7e-7 over the
     scene's first 3 s (sampled 8 times a step)."""
     assert _deepest_overlap(15, 3.0) < 2e-6
-
-
-def test_a_lift_does_not_sink_a_touching_pair_inside_the_step():
-    """Corpus scene 198 at 1.222-1.224 s: two circles of a pile touch, at rest against each
-    other, and the step's forces start them apart while a lift of 0.03 m/s pushes a third
-    body out of an overlap. The lift (front-loaded over the step) was allowed to close the
-    pair by as much as the forces opened it by the step's end, and sank them 3.6e-7 into each
-    other on the way. A lift now never takes a gap below its start inside the step
-    (``_lift_floor``): 8e-17, sampled 20 times a step."""
-    world = corpus.scene(198)
-    bodies = {body.id: body for body in world.bodies}
-    a, b = bodies[13], bodies[23]
-    world.run_until(1.2)
-    depths = []
-    for k in range(1, 601):
-        world.run_until(1.2 + k * 5e-5)
-        depths.append(world.overlap_depth(a, b))
-    assert max(depths) > -1e-9  # they touch: the case is the one described
-    assert max(depths) <= 1e-9

@@ -1456,10 +1456,11 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
     may have slipped at its start where the row acts (a turning body's rows act at mid-step),
     and a force constant over the step works on the slip's mean. So for each group of bodies
     the step's forces join (a part), where the work is positive beyond rounding, the part's
-    velocities relative to its support (zero where a force joins it to a fixed body, else
-    its centre of mass, whose momentum stays) and its spins are scaled by the factor that
-    takes the work out: a point that sticks still sticks, a body no force touches keeps its
-    motion. Where even stopping the part's relative motion would not take it out (a point
+    velocities and spins beyond its rigid motion (none where a force joins it to a fixed
+    body; else the motion of the part as one rigid body with its momentum and its angular
+    momentum about its centre, which both stay) are scaled by the factor that takes the work
+    out: every relative velocity at a contact scales with them (a rigid motion has none), so
+    a point that sticks still sticks, and a body no force touches keeps its motion. Where even stopping the part's relative motion would not take it out (a point
     rising slower than the step's own acceleration stops it, held at the step's end: the
     float of docs/contact.md, "Energy"), the part is left as it is. Returns how many parts
     were scaled."""
@@ -1472,24 +1473,57 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
     for c in range(count):
         if pressed[c] and pairs[c, 1] < 0:
             grounded[labels[pairs[c, 0]]] = True
-    # per part (at its root's index): mass and momentum, then the energy account
+    # per part (at its root's index): its rigid motion, which carries its momentum and its
+    # angular momentum (zero for a part on a fixed body), then the energy account
     total = np.zeros(m)
-    rx = np.zeros(m)
-    ry = np.zeros(m)
+    cx = np.zeros(m)
+    cy = np.zeros(m)
+    px = np.zeros(m)
+    py = np.zeros(m)
     for k in range(m):
         r = labels[k]
         if r >= 0 and not grounded[r]:
-            mass = 1.0 / F[members[k], L.INV_MASS]
+            i = members[k]
+            mass = 1.0 / F[i, L.INV_MASS]
             total[r] += mass
-            rx[r] += mass * end[k, 0]
-            ry[r] += mass * end[k, 1]
+            cx[r] += mass * F[i, L.X]
+            cy[r] += mass * F[i, L.Y]
+            px[r] += mass * end[k, 0]
+            py[r] += mass * end[k, 1]
+    spin = np.zeros(m)  # the part's angular momentum about its centre, then its rigid spin
+    turning = np.zeros(m)  # its moment of inertia about its centre
     for r in range(m):
         if total[r] > 0.0:
-            rx[r] /= total[r]
-            ry[r] /= total[r]
+            cx[r] /= total[r]
+            cy[r] /= total[r]
+            px[r] /= total[r]
+            py[r] /= total[r]
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and total[r] > 0.0:
+            i = members[k]
+            mass = 1.0 / F[i, L.INV_MASS]
+            inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
+            dx = F[i, L.X] - cx[r]
+            dy = F[i, L.Y] - cy[r]
+            spin[r] += mass * (dx * end[k, 1] - dy * end[k, 0]) + inertia * end[k, 2]
+            turning[r] += mass * (dx * dx + dy * dy) + inertia
+    for r in range(m):
+        if turning[r] > 0.0:
+            spin[r] /= turning[r]
+    # each body's velocity and spin in its part's rigid motion
+    rigid = np.zeros((m, 3))
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and total[r] > 0.0:
+            i = members[k]
+            rigid[k, 0] = px[r] - spin[r] * (F[i, L.Y] - cy[r])
+            rigid[k, 1] = py[r] + spin[r] * (F[i, L.X] - cx[r])
+            rigid[k, 2] = spin[r]
     before = np.zeros(m)  # kinetic energy now
-    relative = np.zeros(m)  # kinetic energy at the end relative to the support
-    along = np.zeros(m)  # work of the bodies' own accelerations on that relative motion
+    relative = np.zeros(m)  # kinetic energy at the end beyond the rigid motion
+    carried = np.zeros(m)  # the rigid motion's
+    along = np.zeros(m)  # work of the bodies' own accelerations on the motion beyond it
     rest = np.zeros(m)  # their work on the rest of the displacement
     scale = np.zeros(m)
     for k in range(m):
@@ -1501,14 +1535,15 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
         ax = 0.5 * h * mass * F[i, L.FREE_AX]
         ay = 0.5 * h * mass * F[i, L.FREE_AY]
         before[r] += _kinetic(F, i, now[k, 0], now[k, 1], now[k, 2])
-        relative[r] += _kinetic(F, i, end[k, 0] - rx[r], end[k, 1] - ry[r], end[k, 2])
-        along[r] += ax * (end[k, 0] - rx[r]) + ay * (end[k, 1] - ry[r])
-        rest[r] += ax * (now[k, 0] + rx[r]) + ay * (now[k, 1] + ry[r])
+        relative[r] += _kinetic(F, i, end[k, 0] - rigid[k, 0], end[k, 1] - rigid[k, 1], end[k, 2] - rigid[k, 2])
+        carried[r] += _kinetic(F, i, rigid[k, 0], rigid[k, 1], rigid[k, 2])
+        along[r] += ax * (end[k, 0] - rigid[k, 0]) + ay * (end[k, 1] - rigid[k, 1])
+        rest[r] += ax * (now[k, 0] + rigid[k, 0]) + ay * (now[k, 1] + rigid[k, 1])
         scale[r] += abs(ax * (now[k, 0] + end[k, 0]) + ay * (now[k, 1] + end[k, 1]))
     factor = np.ones(m)
     scaled = 0
     for r in range(m):
-        kept = before[r] + rest[r] - 0.5 * total[r] * (rx[r] * rx[r] + ry[r] * ry[r])
+        kept = before[r] + rest[r] - carried[r]
         gain = relative[r] - along[r] - kept
         if gain <= ENERGY_ROUNDING * (before[r] + scale[r]) or kept < 0.0 or relative[r] <= 0.0:
             continue
@@ -1523,9 +1558,8 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
     for k in range(m):
         r = labels[k]
         if r >= 0 and factor[r] < 1.0:
-            end[k, 0] = rx[r] + factor[r] * (end[k, 0] - rx[r])
-            end[k, 1] = ry[r] + factor[r] * (end[k, 1] - ry[r])
-            end[k, 2] *= factor[r]
+            for q in range(3):
+                end[k, q] = rigid[k, q] + factor[r] * (end[k, q] - rigid[k, q])
     return scaled
 
 
