@@ -97,7 +97,10 @@ FAX, FAY, FBX, FBY, KF, K12, DET = range(NCOLUMNS + 15, NCOLUMNS + 22)
 # ... and what a turning body's arc adds to a point's separation at the step's end beyond the
 # straight-line motion of its contact point where it is at mid-step (``_midstep_rows``)
 ARC = NCOLUMNS + 22
-NSOLVE = NCOLUMNS + 23
+# ... and its point's normal speed now where the contact is now, before a turning pair's rows
+# move to mid-step (there a turning body's point may close where the contact does not)
+APPROACH = NCOLUMNS + 23
+NSOLVE = NCOLUMNS + 24
 # what an active set gave (``_active_set``)
 SET_SOLVED, SET_MOVED, SET_WRONG = range(3)
 # the warm-start key of a contact: (body a, body b, manifold key) in one integer
@@ -315,6 +318,8 @@ def _midstep_rows(S, now, rows, pairs, count, h):
         d = _pair_end(pairs, count, c)
         for r in range(c, d):
             rows[r, ARC] = 0.0
+            ux, uy = _relative(now, pairs, rows, r)
+            rows[r, APPROACH] = ux * rows[r, NX] + uy * rows[r, NY]
         if _turning_pair(I, now, pairs, c):
             at_half, outline = _moved(F, I, OL, OB, now, pairs, c, 0.5 * h, outline, half)
             at_full, outline = _moved(F, I, OL, OB, now, pairs, c, h, outline, full)
@@ -373,7 +378,9 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
     motion (its manifold found again at that pose) must be no deeper than the point's
     overlap at the start, nor than its straight line goes there (a speculative gap the force
     stage closes only by the step's end is the step's to close: lifting it would lift a box
-    landing on another against gravity, with no work to pay for it).
+    landing on another against gravity, with no work to pay for it), that line leaving at
+    the speed the contact closes now where it is now (``APPROACH``): a row moved to
+    mid-step may close faster where the contact does not close at all.
     The push-out's lift, a speed taken back over the step, has moved a point by
     ``lift (s - s^2 / 2h)`` at ``s``, three quarters of its end displacement at mid-step, so
     a deficit ``D`` at ``s`` asks ``D h / (2 s - s^2 / h)`` of it at the end, and the arc
@@ -423,8 +430,11 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
                 if q < 0:
                     continue
                 # no deeper than the start's overlap, nor than the straight line goes (a gap
-                # the force stage closes only by the step's end is its to close)
-                straight = rows[r, SEPARATION] + s * u0 + (u1 - u0) * s * s / (2.0 * h)
+                # the force stage closes only by the step's end is its to close), the line
+                # leaving at the speed the contact closes now, not faster where the row's
+                # mid-step point does (a circle sliding along a turning face)
+                leaving = max(u0, rows[r, APPROACH])
+                straight = rows[r, SEPARATION] + s * leaving + (line - rows[r, SEPARATION] - h * leaving) * (s / h) ** 2
                 lowest = min(floor, straight)
                 if inside[k, q, SEPARATION] < lowest:
                     asked = max(asked, (lowest - inside[k, q, SEPARATION]) * h / (2.0 * s - s * s / h))
