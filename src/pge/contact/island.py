@@ -1470,10 +1470,11 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
     body; else the motion of the part as one rigid body with its momentum and its angular
     momentum about its centre, which both stay) are scaled by the factor that takes the work
     out: every relative velocity at a contact scales with them (a rigid motion has none), so
-    a point that sticks still sticks, and a body no force touches keeps its motion. Where even stopping the part's relative motion would not take it out (a point
-    rising slower than the step's own acceleration stops it, held at the step's end: the
-    float of docs/contact.md, "Energy"), the part is left as it is. Returns how many parts
-    were scaled."""
+    a point that sticks still sticks, and a body no force touches keeps its motion. Where
+    even stopping the part's relative motion would not take it out (a point rising slower
+    than the step's own acceleration stops it, held at the step's end: the float of
+    docs/contact.md, "Energy"), the part is left as it is. Returns how many parts were
+    scaled."""
     m = members.shape[0]
     pressed = np.empty(count, dtype=np.bool_)
     for c in range(count):
@@ -1778,11 +1779,12 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
     any cut for a bounce: ``h / nominal`` of that in a step cut shorter, so that the lift,
     a speed, stays within ``2 PUSH_RATE |e| / nominal``) where ``e < 0``, closed by at most
     ``e`` where ``e >= 0``, and no deeper than its start anywhere within the step
-    (``_lift_floor``: a lift is front-loaded, the forces' opening may come late). A point's ``ARC`` (``_midstep_rows``: what a turning body's
-    contact adds to the straight line's end separation) is an overlap the step would make,
-    not one it found: all of it is moved out at this step. Nothing is solved unless some
-    point would overlap by more than ``PUSH_SLOP`` of its pair's smaller reach. Returns the
-    lifts (all zero then) and the sweeps taken."""
+    (``_lift_floor``: a lift is front-loaded, the forces' opening may come late). A point's
+    ``ARC`` (``_midstep_rows``: what a turning body's contact adds to the straight line's
+    end separation) is an overlap the step would make, not one it found: all of it is moved
+    out at this step. Nothing is solved unless some point would overlap by more than
+    ``PUSH_SLOP`` of its pair's smaller reach. Returns the lifts (all zero then) and the
+    sweeps taken."""
     m = now.shape[0]
     lift = np.zeros((m, 3))
     need = np.empty(count)
