@@ -20,6 +20,17 @@ from pge.contact.manifold import NCOLUMNS, SEPARATION, polygon_polygon_points
 MARGIN = 1e-3
 
 
+#: two polygons' draws shared by the property tests: sides, bounding radii, a's turn ...
+_SHAPES = dict(
+    na=st.integers(3, 6),
+    nb=st.integers(3, 6),
+    ra=st.floats(0.2, 2.0),
+    rb=st.floats(0.2, 2.0),
+    turn_a=st.floats(0.0, 2.0 * math.pi),
+)
+#: ... and b's turn and the direction it comes from
+_PAIR = dict(_SHAPES, turn_b=st.floats(0.0, 2.0 * math.pi), direction=st.floats(0.0, 2.0 * math.pi))
+
 def outline(n: int, radius: float, turn: float) -> np.ndarray:
     """Outline rows (vertex, unit normal of the face from it to the next, face length) of a
     regular polygon turned by ``turn``, about its centre."""
@@ -79,13 +90,7 @@ def _slid_in(a, b, reach, direction, gap):
 
 @settings(max_examples=300, deadline=None)
 @given(
-    na=st.integers(3, 6),
-    nb=st.integers(3, 6),
-    ra=st.floats(0.2, 2.0),
-    rb=st.floats(0.2, 2.0),
-    turn_a=st.floats(0.0, 2.0 * math.pi),
-    turn_b=st.floats(0.0, 2.0 * math.pi),
-    direction=st.floats(0.0, 2.0 * math.pi),
+    **_PAIR,
     gap=st.floats(-0.5, 1.0) | st.floats(-1e-9, 1e-9),
 )
 def test_polygons_within_the_margin_always_have_a_manifold_point(na, nb, ra, rb, turn_a, turn_b, direction, gap):
@@ -132,13 +137,7 @@ def test_a_box_sliding_into_the_foot_of_a_sloping_face_meets_the_slope_s_corner(
 
 @settings(max_examples=400, deadline=None)
 @given(
-    na=st.integers(3, 6),
-    nb=st.integers(3, 6),
-    ra=st.floats(0.2, 2.0),
-    rb=st.floats(0.2, 2.0),
-    turn_a=st.floats(0.0, 2.0 * math.pi),
-    turn_b=st.floats(0.0, 2.0 * math.pi),
-    direction=st.floats(0.0, 2.0 * math.pi),
+    **_PAIR,
     gap=st.floats(0.0, 0.9 * MARGIN),
     move=st.floats(0.0, 2.0 * math.pi),
     distance=st.floats(0.0, 4.0),
@@ -175,11 +174,7 @@ def test_a_translation_the_points_allow_never_overlaps(na, nb, ra, rb, turn_a, t
 
 @settings(max_examples=400, deadline=None)
 @given(
-    na=st.integers(3, 6),
-    nb=st.integers(3, 6),
-    ra=st.floats(0.2, 2.0),
-    rb=st.floats(0.2, 2.0),
-    turn_a=st.floats(0.0, 2.0 * math.pi),
+    **_SHAPES,
     corner=st.integers(0, 5),
     face=st.integers(0, 5),
     gap=st.floats(0.0, 0.9 * MARGIN),
@@ -217,13 +212,7 @@ def test_a_translation_the_points_allow_never_overlaps_beside_a_corner_on_one_li
 
 @settings(max_examples=300, deadline=None)
 @given(
-    na=st.integers(3, 6),
-    nb=st.integers(3, 6),
-    ra=st.floats(0.2, 2.0),
-    rb=st.floats(0.2, 2.0),
-    turn_a=st.floats(0.0, 2.0 * math.pi),
-    turn_b=st.floats(0.0, 2.0 * math.pi),
-    direction=st.floats(0.0, 2.0 * math.pi),
+    **_PAIR,
     gap=st.just(0.0) | st.floats(0.0, 1e-4),
 )
 # touching pairs where the first polygon's deepest face reads within 1e-3 of their size of

@@ -328,8 +328,7 @@ def _midstep_rows(S, now, rows, pairs, count, h):
                 e = _match(full, at_full, rows[r, KEY])
                 if q < 0 or e < 0:
                     continue
-                ux, uy = _relative(now, pairs, rows, r)
-                start = ux * rows[r, NX] + uy * rows[r, NY]
+                start = rows[r, APPROACH]
                 k_full = full[e, SEPARATION] - rows[r, SEPARATION] - h * start
                 k_half = half[q, SEPARATION] - rows[r, SEPARATION] - 0.5 * h * start
                 _to_midstep(F, now, rows, pairs, r, half[q], h)
@@ -1476,61 +1475,8 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
     docs/contact.md, "Energy"), the part is left as it is. Returns how many parts were
     scaled."""
     m = members.shape[0]
-    pressed = np.empty(count, dtype=np.bool_)
-    for c in range(count):
-        pressed[c] = rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0
-    labels = _parts(pairs, pressed, count, m)
-    grounded = np.zeros(m, dtype=np.bool_)
-    for c in range(count):
-        if pressed[c] and pairs[c, 1] < 0:
-            grounded[labels[pairs[c, 0]]] = True
-    # per part (at its root's index): its rigid motion, which carries its momentum and its
-    # angular momentum (zero for a part on a fixed body), then the energy account
-    total = np.zeros(m)
-    cx = np.zeros(m)
-    cy = np.zeros(m)
-    px = np.zeros(m)
-    py = np.zeros(m)
-    for k in range(m):
-        r = labels[k]
-        if r >= 0 and not grounded[r]:
-            i = members[k]
-            mass = 1.0 / F[i, L.INV_MASS]
-            total[r] += mass
-            cx[r] += mass * F[i, L.X]
-            cy[r] += mass * F[i, L.Y]
-            px[r] += mass * end[k, 0]
-            py[r] += mass * end[k, 1]
-    spin = np.zeros(m)  # the part's angular momentum about its centre, then its rigid spin
-    turning = np.zeros(m)  # its moment of inertia about its centre
-    for r in range(m):
-        if total[r] > 0.0:
-            cx[r] /= total[r]
-            cy[r] /= total[r]
-            px[r] /= total[r]
-            py[r] /= total[r]
-    for k in range(m):
-        r = labels[k]
-        if r >= 0 and total[r] > 0.0:
-            i = members[k]
-            mass = 1.0 / F[i, L.INV_MASS]
-            inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
-            dx = F[i, L.X] - cx[r]
-            dy = F[i, L.Y] - cy[r]
-            spin[r] += mass * (dx * end[k, 1] - dy * end[k, 0]) + inertia * end[k, 2]
-            turning[r] += mass * (dx * dx + dy * dy) + inertia
-    for r in range(m):
-        if turning[r] > 0.0:
-            spin[r] /= turning[r]
-    # each body's velocity and spin in its part's rigid motion
-    rigid = np.zeros((m, 3))
-    for k in range(m):
-        r = labels[k]
-        if r >= 0 and total[r] > 0.0:
-            i = members[k]
-            rigid[k, 0] = px[r] - spin[r] * (F[i, L.Y] - cy[r])
-            rigid[k, 1] = py[r] + spin[r] * (F[i, L.X] - cx[r])
-            rigid[k, 2] = spin[r]
+    labels, grounded = _force_parts(rows, pairs, count, m)
+    rigid = _rigid_motion(F, members, end, labels, grounded)
     before = np.zeros(m)  # kinetic energy now
     relative = np.zeros(m)  # kinetic energy at the end beyond the rigid motion
     carried = np.zeros(m)  # the rigid motion's
@@ -1555,23 +1501,99 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
     scaled = 0
     for r in range(m):
         kept = before[r] + rest[r] - carried[r]
-        gain = relative[r] - along[r] - kept
-        if gain <= ENERGY_ROUNDING * (before[r] + scale[r]) or kept < 0.0 or relative[r] <= 0.0:
-            continue
-        # the larger root of relative s^2 - along s - kept = 0, in the form that does not cancel
-        root = math.sqrt(along[r] * along[r] + 4.0 * relative[r] * kept)
-        if along[r] >= 0.0:
-            factor[r] = min((along[r] + root) / (2.0 * relative[r]), 1.0)
-        else:
-            factor[r] = min(2.0 * kept / (root - along[r]), 1.0)
-        if factor[r] < 1.0:
-            scaled += 1
+        if relative[r] - along[r] - kept > ENERGY_ROUNDING * (before[r] + scale[r]):
+            factor[r] = _work_out(relative[r], along[r], kept)
+            if factor[r] < 1.0:
+                scaled += 1
     for k in range(m):
         r = labels[k]
         if r >= 0 and factor[r] < 1.0:
             for q in range(3):
                 end[k, q] = rigid[k, q] + factor[r] * (end[k, q] - rigid[k, q])
     return scaled
+
+
+@njit(cache=True)
+def _force_parts(rows, pairs, count, m):
+    """The parts of an island that its step's forces join (``_parts`` over the rows with an
+    impulse), and whether each part (at its root's index) is joined to a fixed body."""
+    pressed = np.empty(count, dtype=np.bool_)
+    for c in range(count):
+        pressed[c] = rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0
+    labels = _parts(pairs, pressed, count, m)
+    grounded = np.zeros(m, dtype=np.bool_)
+    for c in range(count):
+        if pressed[c] and pairs[c, 1] < 0:
+            grounded[labels[pairs[c, 0]]] = True
+    return labels, grounded
+
+
+@njit(cache=True)
+def _rigid_motion(F, members, velocities, labels, grounded):
+    """Each body's velocity and spin in its part's rigid motion: the motion of the part as
+    one rigid body with its momentum and its angular momentum about its centre (the bodies at
+    their positions now); zero for a body in no part or in a part joined to a fixed body."""
+    m = members.shape[0]
+    total = np.zeros(m)
+    cx = np.zeros(m)
+    cy = np.zeros(m)
+    px = np.zeros(m)
+    py = np.zeros(m)
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and not grounded[r]:
+            i = members[k]
+            mass = 1.0 / F[i, L.INV_MASS]
+            total[r] += mass
+            cx[r] += mass * F[i, L.X]
+            cy[r] += mass * F[i, L.Y]
+            px[r] += mass * velocities[k, 0]
+            py[r] += mass * velocities[k, 1]
+    spin = np.zeros(m)  # the part's angular momentum about its centre, then its rigid spin
+    turning = np.zeros(m)  # its moment of inertia about its centre
+    for r in range(m):
+        if total[r] > 0.0:
+            cx[r] /= total[r]
+            cy[r] /= total[r]
+            px[r] /= total[r]
+            py[r] /= total[r]
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and total[r] > 0.0:
+            i = members[k]
+            mass = 1.0 / F[i, L.INV_MASS]
+            inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
+            dx = F[i, L.X] - cx[r]
+            dy = F[i, L.Y] - cy[r]
+            spin[r] += mass * (dx * velocities[k, 1] - dy * velocities[k, 0]) + inertia * velocities[k, 2]
+            turning[r] += mass * (dx * dx + dy * dy) + inertia
+    for r in range(m):
+        if turning[r] > 0.0:
+            spin[r] /= turning[r]
+    rigid = np.zeros((m, 3))
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and total[r] > 0.0:
+            i = members[k]
+            rigid[k, 0] = px[r] - spin[r] * (F[i, L.Y] - cy[r])
+            rigid[k, 1] = py[r] + spin[r] * (F[i, L.X] - cx[r])
+            rigid[k, 2] = spin[r]
+    return rigid
+
+
+@njit(cache=True, inline="always")
+def _work_out(relative, along, kept):
+    """The factor on a part's motion beyond its rigid motion that takes out the positive work
+    of its contact forces: the larger root of ``relative s^2 - along s - kept = 0`` (the work
+    at factor ``s``: ``relative`` the kinetic energy of that motion, ``along`` what the
+    bodies' own accelerations do on it, ``kept`` what the part may have beside it), in the
+    form that does not cancel; 1 (unchanged) where no factor can (``kept < 0``: the float)."""
+    if kept < 0.0 or relative <= 0.0:
+        return 1.0
+    root = math.sqrt(along * along + 4.0 * relative * kept)
+    if along >= 0.0:
+        return min((along + root) / (2.0 * relative), 1.0)
+    return min(2.0 * kept / (root - along), 1.0)
 
 
 @njit(cache=True)
