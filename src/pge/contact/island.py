@@ -1454,6 +1454,109 @@ def _guard(F, members, before, after):
     return 1.0
 
 
+@njit(cache=True, inline="always")
+def _power_terms(F, i, now, end, rigid, h, sums):
+    """Add body ``i``'s terms to ``sums``, the mass-weighted products that give its part's
+    contact power at the step's two ends as functions of the factor ``f`` on the motion
+    beyond the rigid one (``_rise``): with ``w = end - rigid`` and the contact impulse at
+    ``f = 0``, ``d = rigid - now - h a_free``, the impulse is ``d + f w`` (times the mass),
+    the velocity at the end ``rigid + f w`` and now ``now``. ``sums``: ``<d, rigid>``,
+    ``<d, w> + <w, rigid>``, ``<w, w>``, ``<d, now>``, ``<w, now>``."""
+    mass = 1.0 / F[i, L.INV_MASS]
+    inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
+    for q in range(3):
+        weight = mass if q < 2 else inertia
+        free = h * F[i, L.FREE_AX] if q == 0 else (h * F[i, L.FREE_AY] if q == 1 else 0.0)
+        w = end[q] - rigid[q]
+        d = rigid[q] - now[q] - free
+        sums[0] += weight * d * rigid[q]
+        sums[1] += weight * (d * w + w * rigid[q])
+        sums[2] += weight * w * w
+        sums[3] += weight * d * now[q]
+        sums[4] += weight * w * now[q]
+
+
+@njit(cache=True, inline="always")
+def _interval(c0, c1, c2):
+    """The interval ``(low, high)`` of ``f`` where ``c0 + c1 f + c2 f^2 <= 0`` (``c2 >= 0``;
+    empty: ``low > high``), roots in the forms that do not cancel."""
+    if c2 <= 0.0:
+        if c1 > 0.0:
+            return -math.inf, -c0 / c1
+        if c1 < 0.0:
+            return -c0 / c1, math.inf
+        return (-math.inf, math.inf) if c0 <= 0.0 else (math.inf, -math.inf)
+    disc = c1 * c1 - 4.0 * c2 * c0
+    if disc < 0.0:
+        return math.inf, -math.inf
+    root = math.sqrt(disc)
+    if c1 >= 0.0:
+        low = -(c1 + root) / (2.0 * c2)
+        high = -2.0 * c0 / (c1 + root) if c1 + root > 0.0 else 0.0
+    else:
+        high = (root - c1) / (2.0 * c2)
+        low = 2.0 * c0 / (root - c1)
+    return low, high
+
+
+@njit(cache=True, inline="always")
+def _rise(sums, f):
+    """How far a part's energy rises inside the step from the lowest it was before, at the
+    factor ``f`` on its motion beyond its rigid motion (``_power_terms``). The forces'
+    power is linear in time over the step; at its ends (as work over the whole step)
+    ``start = sums[3] + sums[4] f`` and ``end = sums[0] + sums[1] f + sums[2] f^2``. Where it
+    crosses zero upwards the energy dips and comes back by ``end^2 / (2 (end - start))``;
+    downwards it rises first, by ``start^2 / (2 (start - end))``."""
+    start = sums[3] + sums[4] * f
+    end = sums[0] + (sums[1] + sums[2] * f) * f
+    if start >= 0.0 and end >= 0.0:
+        return 0.5 * (start + end)
+    if end > 0.0:
+        return 0.5 * end * end / (end - start)
+    if start > 0.0:
+        return 0.5 * start * start / (start - end)
+    return 0.0
+
+
+@njit(cache=True, inline="always")
+def _work_at(work, f):
+    """The contact forces' work over the step at the factor ``f`` (``work``: its
+    coefficients, ``_no_gain``)."""
+    return work[0] + (work[1] + work[2] * f) * f
+
+
+@njit(cache=True, inline="always")
+def _rise_out(sums, work, cap, allowed, rounding):
+    """The largest factor up to ``cap`` on a part's motion beyond its rigid motion at which
+    its energy rises nowhere inside the step by more than ``allowed`` (``_rise``) and the
+    step's work is at most ``rounding``: a step may lose energy from end to end and still
+    have a collision inside it see less energy than a later one (the forces' power, linear
+    in time over a step, rising through zero: a contact's approach turned round, a slip
+    reversed). ``cap`` where it already holds there, or where it does not hold even at 0
+    (nothing to gain from scaling); else found by bisection (both are quadratic in the
+    factor, the rise a ratio of them, and where it holds at 0 and not at ``cap`` a crossing
+    lies between)."""
+    if _rise(sums, cap) <= allowed and _work_at(work, cap) <= rounding:
+        return cap
+    # a factor that holds: where the power is not positive at either end (no rise at all),
+    # else 0
+    low0, high0 = _interval(sums[0], sums[1], sums[2])
+    low1, high1 = _interval(sums[3], sums[4], 0.0)
+    low = min(cap, high0, high1)
+    if low < max(low0, low1, 0.0) or _work_at(work, low) > rounding or _rise(sums, low) > allowed:
+        low = 0.0
+        if _rise(sums, 0.0) > allowed or _work_at(work, 0.0) > rounding:
+            return cap
+    high = cap
+    for _ in range(60):
+        middle = 0.5 * (low + high)
+        if _rise(sums, middle) <= allowed and _work_at(work, middle) <= rounding:
+            low = middle
+        else:
+            high = middle
+    return low
+
+
 @njit(cache=True)
 def _no_gain(F, members, now, end, rows, pairs, count, h):
     """The energy stage: over the step the contact forces may do no positive work. Each
@@ -1472,7 +1575,9 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
     a point that sticks still sticks, and a body no force touches keeps its motion. Where
     even stopping the part's relative motion would not take it out (a point rising slower
     than the step's own acceleration stops it, held at the step's end: the float of
-    docs/contact.md, "Energy"), the part is left as it is. Returns how many parts were
+    docs/contact.md, "Energy"), the part is left as it is. The same factor keeps the
+    energy from rising inside the step (``_rise_out``): beyond rounding without gravity,
+    beyond the float's own bound ``m (|a| h)^2 / 32`` with it. Returns how many parts were
     scaled."""
     m = members.shape[0]
     labels, grounded = _force_parts(rows, pairs, count, m)
@@ -1483,10 +1588,14 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
     along = np.zeros(m)  # work of the bodies' own accelerations on the motion beyond it
     rest = np.zeros(m)  # their work on the rest of the displacement
     scale = np.zeros(m)
+    floats = np.zeros(m)  # the float's bound on a rise inside the step (docs/contact.md, "Energy")
+    present = np.zeros(m, dtype=np.bool_)
+    power = np.zeros((m, 5))  # the contact impulse against the velocities (_power_terms)
     for k in range(m):
         r = labels[k]
         if r < 0:
             continue
+        present[r] = True
         i = members[k]
         mass = 1.0 / F[i, L.INV_MASS]
         ax = 0.5 * h * mass * F[i, L.FREE_AX]
@@ -1497,14 +1606,21 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
         along[r] += ax * (end[k, 0] - rigid[k, 0]) + ay * (end[k, 1] - rigid[k, 1])
         rest[r] += ax * (now[k, 0] + rigid[k, 0]) + ay * (now[k, 1] + rigid[k, 1])
         scale[r] += abs(ax * (now[k, 0] + end[k, 0]) + ay * (now[k, 1] + end[k, 1]))
+        _power_terms(F, i, now[k], end[k], rigid[k], h, power[r])
+        floats[r] += mass * h * h * (F[i, L.FREE_AX] ** 2 + F[i, L.FREE_AY] ** 2) / 32.0
     factor = np.ones(m)
     scaled = 0
     for r in range(m):
+        if not present[r]:
+            continue
         kept = before[r] + rest[r] - carried[r]
-        if relative[r] - along[r] - kept > ENERGY_ROUNDING * (before[r] + scale[r]):
+        rounding = ENERGY_ROUNDING * (before[r] + scale[r])
+        if relative[r] - along[r] - kept > rounding:
             factor[r] = _work_out(relative[r], along[r], kept)
-            if factor[r] < 1.0:
-                scaled += 1
+        work = (-kept, -along[r], relative[r])
+        factor[r] = min(factor[r], _rise_out(power[r], work, factor[r], rounding + floats[r], rounding))
+        if factor[r] < 1.0:
+            scaled += 1
     for k in range(m):
         r = labels[k]
         if r >= 0 and factor[r] < 1.0:
