@@ -139,18 +139,22 @@ def test_default_elasticity_drop_settles_after_a_few_hundred_bounces_in_finite_t
 def test_stack_of_three_boxes_settles_and_stays_stacked(elasticity, widths, gap):
     """Three boxes dropped with small gaps land, stand level at the exact heights on one another
     and centred, without sideways drift or tilt (to 1e-9, as the stacks of docs/contact.md: a
-    landing that closes a gap within a step leaves rounding of ~1e-11), sleep within 4 s and stay
-    silent for 10 s."""
+    landing that closes a gap within a step leaves rounding of ~1e-11), sleep within 4 s (or,
+    nearly elastic, within a second of the time a box dropped by the gap onto a floor takes to
+    stop bouncing, ``sqrt(2 gap / g) (1 + e) / (1 - e)``: 5.6 s at e = 0.98 and the widest
+    gap) and stay silent for 10 s."""
     world, floor = islands_floor_world(elasticity=elasticity)
     boxes = []
     y = gap
     for k, w in enumerate(widths):
         boxes.append(world.add_box(0.5 - w / 2, y, w, 0.1, mass=1.0 + k, name=f"b{k}"))
         y += 0.1 + gap
+    bouncing = math.sqrt(2.0 * gap / 9.81) * (1.0 + elasticity) / (1.0 - elasticity)
+    limit = max(4.0, 1.0 + bouncing)
     t = 0.0
     while not all(b.asleep for b in boxes):
         t += 0.05
-        assert t < 4.0, "the stack never fell asleep"
+        assert t < limit, "the stack never fell asleep"
         world.run_until(t)
     assert world.stats["joins"] >= 1
     assert [b.resting_on for b in boxes] == [floor, boxes[0], boxes[1]]

@@ -1151,6 +1151,45 @@ def test_the_energy_stage_leaves_no_rise_inside_the_step(speeds, impulse, masses
         assert work >= -bound - slack or _rise_inside(F, now, end, h) >= bound - slack
 
 
+@settings(max_examples=300, deadline=None)
+@given(
+    speeds=st.lists(st.floats(-3.0, 3.0), min_size=12, max_size=12),
+    masses=st.lists(st.floats(0.1, 10.0), min_size=2, max_size=2),
+    soften=st.floats(0.0, 1.0),
+)
+def test_the_impact_stage_keeps_of_the_restitution_what_the_energy_allows(speeds, masses, soften):
+    """``_blend``: from an answer without restitution (``soft``, here made to lose energy by
+    shrinking the motion before) towards one with it (``hard``, any), each part goes as far
+    as its kinetic energy allows and no further: at the share found the energy is at most
+    the one before (to rounding), and a little further it is more (or the share is 1)."""
+    from pge.contact import island as K
+
+    F = _energy_stage_bodies(masses, [0.05 * m for m in masses], np.zeros((2, 2)))
+    before = np.array(speeds[:6]).reshape(2, 3)
+    soft = soften * before
+    hard = np.array(speeds[6:12]).reshape(2, 3)
+    labels = np.zeros(2, dtype=np.int64)  # one part
+    energy = _kinetic_energy(F, before)
+    assume(energy > 1e-6)
+    share = K._blend(F, np.arange(2), before, soft, hard, labels)[0]
+    assert 0.0 <= share <= 1.0
+    at = lambda s: _kinetic_energy(F, soft + s * (hard - soft))
+    assert at(share) <= energy * (1.0 + 2e-13)
+    if share < 1.0:
+        assert at(min(1.0, share + 1e-9)) > energy
+
+
+def test_the_impact_stage_keeps_no_restitution_for_a_part_at_rest():
+    """``_blend`` where the part was at rest and its inelastic answer leaves it so: no energy
+    to spend on restitution, share 0 (a division by zero in its first form)."""
+    from pge.contact import island as K
+
+    F = _energy_stage_bodies([1.0, 2.0], [0.05, 0.1], np.zeros((2, 2)))
+    rest = np.zeros((2, 3))
+    hard = np.array([[0.1, 0.0, 0.0], [-0.05, 0.0, 0.0]])
+    assert K._blend(F, np.arange(2), rest, rest.copy(), hard, np.zeros(2, dtype=np.int64))[0] == 0.0
+
+
 def _signed(low, high):
     """Zero, or a float of either sign with magnitude in [low, high] (gaps and speeds of an
     island's points: no subnormal rounding of their own)."""

@@ -1429,14 +1429,23 @@ def _kinetic(F, i, vx, vy, w):
 
 
 @njit(cache=True)
-def _guard(F, members, before, after):
-    """The energy guard of the impact stage: the part (0 to 1) of the velocity changes from
-    ``before`` to ``after`` to keep so that the kinetic energy does not rise (inelastic
-    impulses never raise it; this catches rounding)."""
-    energy = 0.0
-    grow = 0.0  # first-order change of the kinetic energy along the changes
-    square = 0.0  # its second-order part
-    for k in range(members.shape[0]):
+def _guard(F, members, before, after, labels):
+    """The energy guard of the impact stage: for each part of the island that its impulses
+    join (``labels``, ``_parts``), the share (0 to 1) of its velocity changes from
+    ``before`` to ``after`` to keep so that its kinetic energy does not rise. Inelastic
+    impulses never raise it (this catches rounding); the restitution targets of several
+    contacts solved together can (a body bouncing off one neighbour into another that was
+    moving away). Per part, so that one part's bounce does not scale back another's
+    impacts: a point left closing then sinks in mid-step. Returns each part's share, at
+    its root's index."""
+    m = members.shape[0]
+    energy = np.zeros(m)
+    grow = np.zeros(m)  # first-order change of the kinetic energy along the changes
+    square = np.zeros(m)  # its second-order part
+    for k in range(m):
+        r = labels[k]
+        if r < 0:
+            continue
         i = members[k]
         mass = 1.0 / F[i, L.INV_MASS]
         inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
@@ -1446,12 +1455,56 @@ def _guard(F, members, before, after):
         dvx = after[k, 0] - wx
         dvy = after[k, 1] - wy
         dw = after[k, 2] - w
-        energy += _kinetic(F, i, wx, wy, w)
-        grow += mass * (wx * dvx + wy * dvy) + inertia * w * dw
-        square += 0.5 * (mass * (dvx * dvx + dvy * dvy) + inertia * dw * dw)
-    if grow + square > 1e-13 * energy and square > 0.0:
-        return max(min(-grow / square, 1.0), 0.0) * (1.0 - 4e-16)
-    return 1.0
+        energy[r] += _kinetic(F, i, wx, wy, w)
+        grow[r] += mass * (wx * dvx + wy * dvy) + inertia * w * dw
+        square[r] += 0.5 * (mass * (dvx * dvx + dvy * dvy) + inertia * dw * dw)
+    share = np.ones(m)
+    for r in range(m):
+        if grow[r] + square[r] > 1e-13 * energy[r] and square[r] > 0.0:
+            share[r] = max(min(-grow[r] / square[r], 1.0), 0.0) * (1.0 - 4e-16)
+    return share
+
+
+@njit(cache=True)
+def _blend(F, members, before, soft, hard, labels):
+    """For each part (``labels``), how far (0 to 1) from the inelastic answer ``soft``
+    towards the answer with restitution ``hard`` the part's velocities may go before its
+    kinetic energy rises above the one ``before`` (beyond rounding, 1e-13 of it): the
+    largest root of a quadratic. -1 where even ``soft`` would raise it (rounding).
+    Returns it at each part's root's index."""
+    m = members.shape[0]
+    energy = np.zeros(m)
+    gained = np.zeros(m)  # the inelastic answer's change of the kinetic energy
+    along = np.zeros(m)  # first-order change from it along hard - soft
+    square = np.zeros(m)  # second-order
+    for k in range(m):
+        r = labels[k]
+        if r < 0:
+            continue
+        i = members[k]
+        mass = 1.0 / F[i, L.INV_MASS]
+        inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
+        energy[r] += _kinetic(F, i, before[k, 0], before[k, 1], before[k, 2])
+        for q in range(3):
+            weight = mass if q < 2 else inertia
+            step = soft[k, q] - before[k, q]
+            more = hard[k, q] - soft[k, q]
+            gained[r] += weight * (before[k, q] * step + 0.5 * step * step)
+            along[r] += weight * soft[k, q] * more
+            square[r] += 0.5 * weight * more * more
+    share = np.ones(m)
+    for r in range(m):
+        slack = 1e-13 * energy[r] - gained[r]
+        if slack < 0.0:
+            share[r] = -1.0
+        elif along[r] + square[r] > slack and square[r] > 0.0:
+            root = math.sqrt(along[r] * along[r] + 4.0 * square[r] * slack)
+            if along[r] >= 0.0:
+                largest = 2.0 * slack / (along[r] + root) if along[r] + root > 0.0 else 0.0
+            else:
+                largest = (root - along[r]) / (2.0 * square[r])
+            share[r] = max(min(largest, 1.0), 0.0) * (1.0 - 4e-16)
+    return share
 
 
 @njit(cache=True, inline="always")
@@ -1818,8 +1871,8 @@ def _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed):
 def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     """The impact stage: impulses on the velocities now (``now``, changed in place) so that
     no touching point closes (or it bounces, ``IMPACT``) and no point with a gap closes by
-    more than it within the step; inelastic, so kinetic energy never rises (the energy
-    guard scales back what rounding would add). The same solve as the force stage, on the
+    more than it within the step; kinetic energy never rises (where restitution solved
+    for several contacts together would raise it, ``_inelastic_where_gained``). The same solve as the force stage, on the
     ``IMPACT`` targets, from zero impulses, but its sweeps stop after
     ``IMPACT_ITERATIONS`` where the exact finish fails (more than ``IMPACT_LCP_LIMIT``
     unknowns, or an answer that fails the sweeps' test), and the approach they leave is the
@@ -1844,14 +1897,70 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     rows[:count, LAMBDA_N] = 0.0
     rows[:count, LAMBDA_T] = 0.0
     sweeps = _solve(F, now, rows, pairs, count, speed, down_x, down_y, IMPACT_ITERATIONS, IMPACT_LCP_LIMIT)
-    scale = _guard(F, members, before, now)
-    for k in range(members.shape[0]):
-        for q in range(3):
-            now[k, q] = before[k, q] + scale * (now[k, q] - before[k, q])
+    pressed = _pressed(rows, count)
+    labels = _parts(pairs, pressed, count, members.shape[0])
+    share = _guard(F, members, before, now, labels)
     for c in range(count):
-        struck[c] = scale * rows[c, LAMBDA_N]
+        struck[c] = rows[c, LAMBDA_N]
+    if (share < 1.0).any():
+        sweeps += _inelastic_where_gained(F, members, before, now, rows, pairs, count, speed, down_x, down_y,
+                                          pressed, struck)
     rows[:count, LAMBDA_N:LAMBDA_T + 1] = warm
     return sweeps, struck
+
+
+@njit(cache=True)
+def _pressed(rows, count):
+    """Whether each row has an impulse."""
+    pressed = np.empty(count, dtype=np.bool_)
+    for c in range(count):
+        pressed[c] = rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0
+    return pressed
+
+
+@njit(cache=True)
+def _inelastic_where_gained(F, members, before, now, rows, pairs, count, speed, down_x, down_y, pressed, struck):
+    """The impact stage's answer ``now`` (its normal impulses in ``struck``) raised the
+    kinetic energy of some part of the island: restitution targets of several contacts
+    solved together can (a body bouncing off one neighbour into another that was moving
+    away). Solve the impacts again without restitution (every target at most zero: no
+    energy gained) and, part by part, go from that answer towards the first only as far
+    as the part's energy allows (``_blend``), so that every point still meets its inelastic
+    target: scaling the whole answer back towards the velocities before, as a guard
+    would, leaves points closing, and they sink in mid-step. Where even the inelastic
+    answer gains (rounding), that part is scaled back towards the velocities before
+    (``_guard``). Changes ``now`` and ``struck``; returns the sweeps of the second solve."""
+    plain = rows.copy()
+    for c in range(count):
+        plain[c, TARGET] = min(rows[c, IMPACT], 0.0)
+        plain[c, LAMBDA_N] = 0.0
+        plain[c, LAMBDA_T] = 0.0
+    soft = before.copy()
+    sweeps = _solve(F, soft, plain, pairs, count, speed, down_x, down_y, IMPACT_ITERATIONS, IMPACT_LCP_LIMIT)
+    either = _pressed(plain, count)
+    for c in range(count):
+        either[c] = either[c] or pressed[c]
+    labels = _parts(pairs, either, count, members.shape[0])
+    share = _blend(F, members, before, soft, now, labels)
+    fallback = _guard(F, members, before, soft, labels)
+    for k in range(members.shape[0]):
+        r = labels[k]
+        if r < 0:
+            continue
+        for q in range(3):
+            if share[r] >= 0.0:
+                now[k, q] = soft[k, q] + share[r] * (now[k, q] - soft[k, q])
+            else:
+                now[k, q] = before[k, q] + fallback[r] * (soft[k, q] - before[k, q])
+    for c in range(count):
+        if not either[c]:
+            continue
+        r = labels[pairs[c, 0]]
+        if share[r] >= 0.0:
+            struck[c] = plain[c, LAMBDA_N] + share[r] * (struck[c] - plain[c, LAMBDA_N])
+        else:
+            struck[c] = fallback[r] * plain[c, LAMBDA_N]
+    return sweeps
 
 
 @njit(cache=True)
