@@ -177,11 +177,11 @@ def test_a_gap_that_closes_and_opens_again_within_a_step_is_held_inside_it():
     1e-3 m/s where the contact does not close at all; the instants allowed the row's straight
     line its dip. Its line now leaves at the speed the contact closes now: 3.2e-8. Since the
     impact stage keeps restitution part by part (2026-12-05) the scene's trajectory parts
-    from that one at rounding after 1.7 s and no longer reaches the second event; what it
-    meets instead, a polygon spinning at 20 rad/s against circles (7.1e-7 at 2.06 s), is
-    the fast-turning family of docs/contact.md, "Gaps". The first event: 1.4e-8 over the
-    scene's first 1.7 s."""
-    assert _deepest_overlap(15, 1.7) < 2e-7
+    from that one at rounding after 1.7 s and no longer reaches the second event; it meets
+    instead a polygon spinning at 9 to 20 rad/s against circles whose contacts pass from a
+    face to a corner within a step (7.1e-7 at 2.06 s between the three instants), now held
+    at ``FEATURE_INSTANTS``: 1.4e-8 over the first 3 s."""
+    assert _deepest_overlap(15, 3.0) < 2e-7
 
 
 def test_a_bounce_that_gains_in_one_part_of_an_island_leaves_no_point_closing_in_another():

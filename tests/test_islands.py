@@ -861,6 +861,28 @@ def test_a_plank_rocking_on_a_cylinder_never_sinks_into_it_and_gains_no_energy(s
     assert abs(plank.position[0] - 0.5) < 0.01
 
 
+@pytest.mark.parametrize("spin, speed, start", [(1.5, 0.3, 0.35), (3.0, 0.3, 0.35), (3.0, 0.15, 0.4)])
+def test_a_ball_sliding_off_a_rocking_plank_passes_its_turning_corner_without_sinking(spin, speed, start):
+    """A ball (no friction, no bounce) sliding along a plank that rocks on a cylinder runs
+    off the plank's end: within one step its contact passes from the plank's top face to its
+    corner, which the turning plank lifts into it. The step's gaps inside were held at three
+    instants, for points whose features stay only: the corner sank 3.5e-6 into the ball
+    (at 3 rad/s) and, between the instants, 1.2e-7 (at 1.5 rad/s). Where a pair's features
+    change within the step its gaps are held at ``FEATURE_INSTANTS`` instants, the point of
+    changed features by the pair's deepest point: at most 3.3e-8 (sampled 8 times a step)."""
+    world = World(gravity=(0.0, -G), bounds=(-2.0, -2.0, 3.0, 3.0))
+    world.add_circle((0.5, 0.3), 0.1, fixed=True, friction=0.8)
+    plank = world.add_box(0.3, 0.4, 0.4, 0.02, mass=1.0, friction=0.8, elasticity=0.0, angular_velocity=spin)
+    ball = world.add_circle((start, 0.44), 0.02, mass=0.1, friction=0.0, elasticity=0.0, velocity=(speed, 0.0))
+    deepest, t = 0.0, 0.0
+    while t < 0.6:
+        t += ISLAND_STEP / 8
+        world.run_until(t)
+        deepest = max(deepest, world.overlap_depth(ball, plank))
+    assert world.overlap_depth(ball, plank) < -0.01  # it ran off the plank and fell clear of it
+    assert deepest < 6e-8
+
+
 @pytest.mark.parametrize("spin", [1.0, 2.0, 4.0])
 def test_a_plank_rocking_on_a_cylinder_ends_every_step_touching_it(monkeypatch, spin):
     """The arcs of stage 8 found again on the step's solved motion (``_solved_arcs``): the

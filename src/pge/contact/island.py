@@ -82,6 +82,7 @@ from pge.core.tuning import (
     SIMULTANEOUS,
     SOLVE_TOLERANCE,
     STEP_INSTANTS,
+    FEATURE_INSTANTS,
     TOUCHING,
 )
 
@@ -357,6 +358,25 @@ def _deepest(out, found, key):
     return e
 
 
+@njit(cache=True, inline="always")
+def _instant_ask(rows, r, out, found, s, h, u0, line, floor):
+    """The end displacement that the gap of row ``r`` at the instant ``s`` into a step of
+    length ``h`` (the pair's manifold moved there: the first ``found`` of ``out``) asks of
+    the push-out's lift (``_solved_arcs``): the point of the same features, or where they
+    changed the pair's deepest point, may be no deeper than ``floor`` (the start's overlap)
+    nor than the row's straight line goes there (``line``: its gap at the end; it leaves at
+    the speed the contact closes now, ``u0`` or ``APPROACH``)."""
+    q = _deepest(out, found, rows[r, KEY])
+    if q < 0:
+        return 0.0
+    leaving = max(u0, rows[r, APPROACH])
+    straight = rows[r, SEPARATION] + s * leaving + (line - rows[r, SEPARATION] - h * leaving) * (s / h) ** 2
+    lowest = min(floor, straight)
+    if out[q, SEPARATION] < lowest:
+        return (lowest - out[q, SEPARATION]) * h / (2.0 * s - s * s / h)
+    return 0.0
+
+
 @njit(cache=True)
 def _solved_arcs(S, now, end, rows, pairs, count, h):
     """Each point's ``ARC`` found again on the step's solved motion, so that the push-out
@@ -401,6 +421,8 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
     full = np.empty((4, NCOLUMNS))
     inside = np.empty((len(STEP_INSTANTS), 4, NCOLUMNS))
     found = np.zeros(len(STEP_INSTANTS), dtype=np.int64)
+    fine = np.empty((FEATURE_INSTANTS - 1, 4, NCOLUMNS))
+    fine_found = np.zeros(FEATURE_INSTANTS - 1, dtype=np.int64)
     c = 0
     while c < count:
         d = _pair_end(pairs, count, c)
@@ -408,8 +430,18 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
             c = d
             continue  # the straight lines are the motion
         at_full, outline = _moved(F, I, OL, OB, mean, pairs, c, h, outline, full)
+        changed = False  # a point of the pair changes features within the step
         for k in range(len(STEP_INSTANTS)):
             found[k], outline = _moved(F, I, OL, OB, moving[k], pairs, c, STEP_INSTANTS[k] * h, outline, inside[k])
+            for r in range(c, d):
+                changed = changed or _match(inside[k], found[k], rows[r, KEY]) < 0
+        for r in range(c, d):
+            changed = changed or _match(full, at_full, rows[r, KEY]) < 0
+        if changed:
+            for k in range(FEATURE_INSTANTS - 1):
+                f = (k + 1.0) / FEATURE_INSTANTS
+                fine_found[k], outline = _moved(F, I, OL, OB, now + (end - now) * (0.5 * f), pairs, c, f * h,
+                                                outline, fine[k])
         for r in range(c, d):
             ux, uy = _relative(now, pairs, rows, r)
             wx, wy = _relative(end, pairs, rows, r)
@@ -422,21 +454,11 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
             floor = min(rows[r, SEPARATION], 0.0)
             asked = 0.0  # the end displacement the instants inside ask of the lift
             for k in range(len(STEP_INSTANTS)):
-                s = STEP_INSTANTS[k] * h
-                # the same features only: a point of other features may be a corner beyond a
-                # face's end, whose separation along that face's normal is no gap
-                q = _match(inside[k], found[k], rows[r, KEY])
-                if q < 0:
-                    continue
-                # no deeper than the start's overlap, nor than the straight line goes (a gap
-                # the force stage closes only by the step's end is its to close), the line
-                # leaving at the speed the contact closes now, not faster where the row's
-                # mid-step point does (a circle sliding along a turning face)
-                leaving = max(u0, rows[r, APPROACH])
-                straight = rows[r, SEPARATION] + s * leaving + (line - rows[r, SEPARATION] - h * leaving) * (s / h) ** 2
-                lowest = min(floor, straight)
-                if inside[k, q, SEPARATION] < lowest:
-                    asked = max(asked, (lowest - inside[k, q, SEPARATION]) * h / (2.0 * s - s * s / h))
+                asked = max(asked, _instant_ask(rows, r, inside[k], found[k], STEP_INSTANTS[k] * h, h, u0, line, floor))
+            if changed:
+                for k in range(FEATURE_INSTANTS - 1):
+                    s = (k + 1.0) / FEATURE_INSTANTS * h
+                    asked = max(asked, _instant_ask(rows, r, fine[k], fine_found[k], s, h, u0, line, floor))
             if asked > 0.0:
                 rows[r, ARC] = min(rows[r, ARC], -asked - line)
         c = d

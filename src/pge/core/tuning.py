@@ -87,6 +87,10 @@ PUSH_RATE = 0.8
 #: the instants inside a step, as fractions of it, where the push-out holds each point's gap
 #: on the step's solved motion as well as at its end (pge.contact.island._solved_arcs)
 STEP_INSTANTS = (0.25, 0.5, 0.75)
+#: ... and at this many evenly spaced instants where a point of the pair changes features
+#: within the step (a circle passing a turning polygon's corner: its gap has a kink there,
+#: and between three instants it dipped by up to 4.5e-7)
+FEATURE_INSTANTS = 16
 #: ... where some point overlaps by more than this times its pair's smaller bounding radius
 #: (overlaps of rounding's size are only kept from growing)
 PUSH_SLOP = 1e-10
