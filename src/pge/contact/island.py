@@ -101,7 +101,11 @@ ARC = NCOLUMNS + 22
 # ... and its point's normal speed now where the contact is now, before a turning pair's rows
 # move to mid-step (there a turning body's point may close where the contact does not)
 APPROACH = NCOLUMNS + 23
-NSOLVE = NCOLUMNS + 24
+# ... and the most a push-out's lift may close its point (a speed, at most 0; -inf where the
+# straight line is the motion) so that its gap on the step's solved motion stays above its
+# floor at the step's instants (``_solved_arcs``; the straight line's own: ``_lift_floor``)
+CLOSABLE = NCOLUMNS + 24
+NSOLVE = NCOLUMNS + 25
 # what an active set gave (``_active_set``)
 SET_SOLVED, SET_MOVED, SET_WRONG = range(3)
 # the warm-start key of a contact: (body a, body b, manifold key) in one integer
@@ -377,6 +381,20 @@ def _instant_ask(rows, r, out, found, s, h, u0, line, floor):
     return 0.0
 
 
+@njit(cache=True, inline="always")
+def _closable_at(rows, r, out, found, s, h, floor):
+    """The least lift speed (negative: a closing one) that keeps the gap of row ``r`` at the
+    instant ``s`` into a step of length ``h`` (the pair's manifold moved there on the
+    solved motion: the first ``found`` of ``out``; the point of the same features, or where
+    they changed the pair's deepest point) above ``floor``: a lift ``l`` has moved the point
+    by ``l h (f - f^2 / 2)`` at ``f = s / h``. -inf where the pair has no point there."""
+    q = _deepest(out, found, rows[r, KEY])
+    if q < 0:
+        return -math.inf
+    f = s / h
+    return (floor - out[q, SEPARATION]) / (h * (f - 0.5 * f * f))
+
+
 @njit(cache=True)
 def _solved_arcs(S, now, end, rows, pairs, count, h):
     """Each point's ``ARC`` found again on the step's solved motion, so that the push-out
@@ -411,6 +429,8 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
     I = S.I
     OL = S.OL
     OB = S.OB
+    for r in range(count):
+        rows[r, CLOSABLE] = -math.inf
     mean = 0.5 * (now + end)
     # the poses at the instants inside, under constant acceleration: moved on for s at the
     # speed of now plus half of what the step adds by then
@@ -453,12 +473,17 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
                 rows[r, ARC] = min(full[e, SEPARATION] - line, 0.0)
             floor = min(rows[r, SEPARATION], 0.0)
             asked = 0.0  # the end displacement the instants inside ask of the lift
+            closable = -math.inf
             for k in range(len(STEP_INSTANTS)):
-                asked = max(asked, _instant_ask(rows, r, inside[k], found[k], STEP_INSTANTS[k] * h, h, u0, line, floor))
+                s = STEP_INSTANTS[k] * h
+                asked = max(asked, _instant_ask(rows, r, inside[k], found[k], s, h, u0, line, floor))
+                closable = max(closable, _closable_at(rows, r, inside[k], found[k], s, h, floor))
             if changed:
                 for k in range(FEATURE_INSTANTS - 1):
                     s = (k + 1.0) / FEATURE_INSTANTS * h
                     asked = max(asked, _instant_ask(rows, r, fine[k], fine_found[k], s, h, u0, line, floor))
+                    closable = max(closable, _closable_at(rows, r, fine[k], fine_found[k], s, h, floor))
+            rows[r, CLOSABLE] = min(closable, 0.0)
             if asked > 0.0:
                 rows[r, ARC] = min(rows[r, ARC], -asked - line)
         c = d
@@ -1451,49 +1476,16 @@ def _kinetic(F, i, vx, vy, w):
 
 
 @njit(cache=True)
-def _guard(F, members, before, after, labels):
-    """The energy guard of the impact stage: for each part of the island that its impulses
-    join (``labels``, ``_parts``), the share (0 to 1) of its velocity changes from
-    ``before`` to ``after`` to keep so that its kinetic energy does not rise. Inelastic
-    impulses never raise it (this catches rounding); the restitution targets of several
-    contacts solved together can (a body bouncing off one neighbour into another that was
-    moving away). Per part, so that one part's bounce does not scale back another's
-    impacts: a point left closing then sinks in mid-step. Returns each part's share, at
-    its root's index."""
-    m = members.shape[0]
-    energy = np.zeros(m)
-    grow = np.zeros(m)  # first-order change of the kinetic energy along the changes
-    square = np.zeros(m)  # its second-order part
-    for k in range(m):
-        r = labels[k]
-        if r < 0:
-            continue
-        i = members[k]
-        mass = 1.0 / F[i, L.INV_MASS]
-        inertia = 1.0 / F[i, L.INV_INERTIA] if F[i, L.INV_INERTIA] > 0.0 else 0.0
-        wx = before[k, 0]
-        wy = before[k, 1]
-        w = before[k, 2]
-        dvx = after[k, 0] - wx
-        dvy = after[k, 1] - wy
-        dw = after[k, 2] - w
-        energy[r] += _kinetic(F, i, wx, wy, w)
-        grow[r] += mass * (wx * dvx + wy * dvy) + inertia * w * dw
-        square[r] += 0.5 * (mass * (dvx * dvx + dvy * dvy) + inertia * dw * dw)
-    share = np.ones(m)
-    for r in range(m):
-        if grow[r] + square[r] > 1e-13 * energy[r] and square[r] > 0.0:
-            share[r] = max(min(-grow[r] / square[r], 1.0), 0.0) * (1.0 - 4e-16)
-    return share
-
-
-@njit(cache=True)
 def _blend(F, members, before, soft, hard, labels):
     """For each part (``labels``), how far (0 to 1) from the inelastic answer ``soft``
     towards the answer with restitution ``hard`` the part's velocities may go before its
     kinetic energy rises above the one ``before`` (beyond rounding, 1e-13 of it): the
     largest root of a quadratic. -1 where even ``soft`` would raise it (rounding).
-    Returns it at each part's root's index."""
+    Returns it at each part's root's index. With ``soft`` the velocities ``before`` it is
+    the impact stage's energy guard: the share of the changes to ``hard`` to keep. Restitution
+    solved for several contacts together can raise the energy (a body bouncing off one
+    neighbour into another that was moving away); per part, so that one part's bounce does
+    not scale back another's impacts (a point left closing sinks in mid-step)."""
     m = members.shape[0]
     energy = np.zeros(m)
     gained = np.zeros(m)  # the inelastic answer's change of the kinetic energy
@@ -1921,7 +1913,7 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     sweeps = _solve(F, now, rows, pairs, count, speed, down_x, down_y, IMPACT_ITERATIONS, IMPACT_LCP_LIMIT)
     pressed = _pressed(rows, count)
     labels = _parts(pairs, pressed, count, members.shape[0])
-    share = _guard(F, members, before, now, labels)
+    share = _blend(F, members, before, before, now, labels)  # the guard: towards the answer from before
     for c in range(count):
         struck[c] = rows[c, LAMBDA_N]
     if (share < 1.0).any():
@@ -1951,7 +1943,7 @@ def _inelastic_where_gained(F, members, before, now, rows, pairs, count, speed, 
     target: scaling the whole answer back towards the velocities before, as a guard
     would, leaves points closing, and they sink in mid-step. Where even the inelastic
     answer gains (rounding), that part is scaled back towards the velocities before
-    (``_guard``). Changes ``now`` and ``struck``; returns the sweeps of the second solve."""
+    (``_blend`` from the velocities before). Changes ``now`` and ``struck``; returns the sweeps of the second solve."""
     plain = rows.copy()
     for c in range(count):
         plain[c, TARGET] = min(rows[c, IMPACT], 0.0)
@@ -1964,7 +1956,7 @@ def _inelastic_where_gained(F, members, before, now, rows, pairs, count, speed, 
         either[c] = either[c] or pressed[c]
     labels = _parts(pairs, either, count, members.shape[0])
     share = _blend(F, members, before, soft, now, labels)
-    fallback = _guard(F, members, before, soft, labels)
+    fallback = _blend(F, members, before, before, soft, labels)
     for k in range(members.shape[0]):
         r = labels[k]
         if r < 0:
@@ -2071,7 +2063,8 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
             wn = wx * rows[c, NX] + wy * rows[c, NY]
             # never a push for this: a point whose own line dips (closing now) is the force
             # stage's, and a lift does not close it further
-            need[c] = max(-2.0 * (left + arc) / h, min(_lift_floor(rows[c, SEPARATION], un, wn, h), 0.0))
+            need[c] = max(-2.0 * (left + arc) / h, min(_lift_floor(rows[c, SEPARATION], un, wn, h), 0.0),
+                          rows[c, CLOSABLE])
         reach = min(F[pairs[c, 2], L.REACH], F[pairs[c, 3], L.REACH])
         if left + arc < -PUSH_SLOP * reach:
             largest = max(largest, need[c])
