@@ -1212,6 +1212,36 @@ def test_the_impact_stage_keeps_no_restitution_for_a_part_at_rest():
     assert K._blend(F, np.arange(2), rest, rest.copy(), hard, np.zeros(2, dtype=np.int64))[0] == 0.0
 
 
+@settings(max_examples=200, deadline=None)
+@given(
+    gap=st.floats(-1e-5, 1e-5),
+    floor=st.floats(-1e-5, 0.0),
+    instant=st.sampled_from([0.25, 0.5, 0.75, 1.0 / 16.0, 15.0 / 16.0]),
+    other=st.booleans(),
+)
+def test_a_lift_closes_a_point_no_further_than_its_gap_at_an_instant_allows(gap, floor, instant, other):
+    """``_closable_at``: the least lift speed for a row at an instant inside the step. A lift
+    ``l``, taken back over the step, has moved the point by ``l h (f - f^2 / 2)`` at ``f``;
+    at the speed returned the point's gap there is its floor exactly (to rounding), and any
+    faster closing would take it below. Where the row's features are not at the instant
+    (``other``), the pair's deepest point there stands for it."""
+    from pge.contact import island as K
+    from pge.contact.manifold import KEY, SEPARATION
+
+    h = ISLAND_STEP
+    rows = np.zeros((1, K.NSOLVE))
+    rows[0, KEY] = 7.0
+    out = np.zeros((4, rows.shape[1]))
+    out[0, KEY] = 3.0 if other else 7.0
+    out[0, SEPARATION] = gap
+    out[1, KEY] = 9.0
+    out[1, SEPARATION] = gap + 1e-6 if not other else gap + 2e-6  # shallower: not the deepest
+    lift = K._closable_at(rows, 0, out, 2, instant * h, h, floor)
+    moved = lift * h * (instant - instant * instant / 2.0)
+    assert gap + moved == pytest.approx(floor, abs=1e-20 + 1e-12 * abs(gap))
+    assert K._closable_at(rows, 0, out, 0, instant * h, h, floor) == -math.inf  # no point there
+
+
 def _signed(low, high):
     """Zero, or a float of either sign with magnitude in [low, high] (gaps and speeds of an
     island's points: no subnormal rounding of their own)."""
