@@ -1697,12 +1697,19 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
 
 
 @njit(cache=True)
-def _force_parts(rows, pairs, count, m):
-    """The parts of an island that its step's forces join (``_parts`` over the rows with an
-    impulse), and whether each part (at its root's index) is joined to a fixed body."""
+def _pressed(rows, count):
+    """Whether each row has an impulse."""
     pressed = np.empty(count, dtype=np.bool_)
     for c in range(count):
         pressed[c] = rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0
+    return pressed
+
+
+@njit(cache=True)
+def _force_parts(rows, pairs, count, m):
+    """The parts of an island that its step's forces join (``_parts`` over the rows with an
+    impulse), and whether each part (at its root's index) is joined to a fixed body."""
+    pressed = _pressed(rows, count)
     labels = _parts(pairs, pressed, count, m)
     grounded = np.zeros(m, dtype=np.bool_)
     for c in range(count):
@@ -1886,8 +1893,8 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
     """The impact stage: impulses on the velocities now (``now``, changed in place) so that
     no touching point closes (or it bounces, ``IMPACT``) and no point with a gap closes by
     more than it within the step; kinetic energy never rises (where restitution solved
-    for several contacts together would raise it, ``_inelastic_where_gained``). The same solve as the force stage, on the
-    ``IMPACT`` targets, from zero impulses, but its sweeps stop after
+    for several contacts together would raise it, ``_inelastic_where_gained``). The same
+    solve as the force stage, on the ``IMPACT`` targets, from zero impulses, but its sweeps stop after
     ``IMPACT_ITERATIONS`` where the exact finish fails (more than ``IMPACT_LCP_LIMIT``
     unknowns, or an answer that fails the sweeps' test), and the approach they leave is the
     force stage's to stop (by the step's end: a point still closing sinks in mid-step).
@@ -1924,15 +1931,6 @@ def _impacts(F, members, now, rows, pairs, count, speed, down_x, down_y):
 
 
 @njit(cache=True)
-def _pressed(rows, count):
-    """Whether each row has an impulse."""
-    pressed = np.empty(count, dtype=np.bool_)
-    for c in range(count):
-        pressed[c] = rows[c, LAMBDA_N] != 0.0 or rows[c, LAMBDA_T] != 0.0
-    return pressed
-
-
-@njit(cache=True)
 def _inelastic_where_gained(F, members, before, now, rows, pairs, count, speed, down_x, down_y, pressed, struck):
     """The impact stage's answer ``now`` (its normal impulses in ``struck``) raised the
     kinetic energy of some part of the island: restitution targets of several contacts
@@ -1943,7 +1941,8 @@ def _inelastic_where_gained(F, members, before, now, rows, pairs, count, speed, 
     target: scaling the whole answer back towards the velocities before, as a guard
     would, leaves points closing, and they sink in mid-step. Where even the inelastic
     answer gains (rounding), that part is scaled back towards the velocities before
-    (``_blend`` from the velocities before). Changes ``now`` and ``struck``; returns the sweeps of the second solve."""
+    (``_blend`` from the velocities before). Changes ``now`` and ``struck``; returns the
+    sweeps of the second solve."""
     plain = rows.copy()
     for c in range(count):
         plain[c, TARGET] = min(rows[c, IMPACT], 0.0)
@@ -2062,7 +2061,8 @@ def _push_out(F, now, end, rows, pairs, count, h, nominal, down_x, down_y):
             un = ux * rows[c, NX] + uy * rows[c, NY]
             wn = wx * rows[c, NX] + wy * rows[c, NY]
             # never a push for this: a point whose own line dips (closing now) is the force
-            # stage's, and a lift does not close it further
+            # stage's, and a lift does not close it further; nor further than its gaps on the
+            # solved motion allow at the step's instants (a turning pair's, CLOSABLE)
             need[c] = max(-2.0 * (left + arc) / h, min(_lift_floor(rows[c, SEPARATION], un, wn, h), 0.0),
                           rows[c, CLOSABLE])
         reach = min(F[pairs[c, 2], L.REACH], F[pairs[c, 3], L.REACH])
