@@ -22,6 +22,7 @@ from pge.core.motion import kernel_angle, orient, spin_at, state_at
 from pge.core.overlap import overlap_depth
 from pge.core.queue import push
 from pge.core.tuning import MIN_TICKS
+from pge.numerics.vector import magnitude
 from pge.toi.circle_circle import circle_circle
 from pge.toi.circle_polygon import circle_polygon
 from pge.toi.polygon_polygon import polygon_polygon
@@ -76,7 +77,8 @@ def place(S, i):
     P = S.P
     Q = S.Q
     now = P[L.TIME]
-    orient(F, I, S.OL, S.OB, i, now)
+    if I[i, L.KIND] != CIRCLE:
+        orient(F, I, S.OL, S.OB, i, now)
     ax = F[i, L.AX]
     ay = F[i, L.AY]
     x, y, vx, vy = state_at(F, i, now)
@@ -94,7 +96,7 @@ def place(S, i):
     else:
         # A spinning polygon's corners travel |omega| R faster than its centroid: the
         # horizon bounds their path too, which keeps the rotating kernels' windows short.
-        span = travel_horizon(math.hypot(vx, vy) + spin, math.hypot(ax, ay) + twist, P[L.TRAVEL])
+        span = travel_horizon(magnitude(vx, vy) + spin, magnitude(ax, ay) + twist, P[L.TRAVEL])
         # A speed of 1e-310 (denormal, left by a long decay) overflows the span to inf, and
         # v * inf would make the box infinite, which the grid cannot file.
         span = min(span, _LONGEST_SPAN)
@@ -141,10 +143,10 @@ def still_speed(F, i, j, ix, iy, ivx, ivy, jx, jy, jvx, jvy):
     """
     spin_i = abs(F[i, L.OMEGA]) * (F[i, L.REACH] + abs(ix) + abs(iy))
     spin_j = abs(F[j, L.OMEGA]) * (F[j, L.REACH] + abs(jx) + abs(jy))
-    return STILL_ULPS * (math.hypot(ivx, ivy) + math.hypot(jvx, jvy) + spin_i + spin_j)
+    return STILL_ULPS * (magnitude(ivx, ivy) + magnitude(jvx, jvy) + spin_i + spin_j)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def predict(S, i, mark, polygons):
     """Predict body ``i`` against every candidate (skipping bodies carrying ``mark`` and
     the pairs an island's step solves: both in one island, or one in an island and the
@@ -153,6 +155,10 @@ def predict(S, i, mark, polygons):
     ``polygons`` is None where no polygon can move (``pge.core.engine.run``): then no
     pair turns and no two polygons are ever predicted (two fixed bodies never are), and
     the version compiled for None has no rotating or polygon-polygon kernel in it.
+
+    Inlined into its one caller, ``drain_predictions``, as ``gather`` is into it: a
+    compiled call passes every array of ``S`` on the stack, about 150 words, and these
+    run about once an event.
     """
     F = S.F
     I = S.I
@@ -271,7 +277,7 @@ def predict(S, i, mark, polygons):
             else:
                 key = (j << L.ID_SHIFT) | i
             closing = (
-                math.hypot(dvx, dvy) + math.hypot(dax, day) * t
+                magnitude(dvx, dvy) + magnitude(dax, day) * t
                 + (abs(spin_at(F, i, now)) + abs(F[i, L.ALPHA]) * t) * F[i, L.REACH]
                 + (abs(spin_at(F, j, now)) + abs(F[j, L.ALPHA]) * t) * F[j, L.REACH]
             )

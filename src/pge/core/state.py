@@ -24,8 +24,17 @@ from pge.core.tuning import STORM_LIMIT, STORM_PER_BODY
 #: (``stats``), the record of the event that returned to Python (``out``), work space
 #: (``scratch``), the bodies waiting to be predicted (``pending``) and the pairs that
 #: overlapped at the start (``excused``).
-State = namedtuple("State", ["F", "I", "OL", "P", "Q", "head", "static_start", "static_items", "heap", "heap_time",
-                             "heap_key", "slot_data", "free", "stats", "out", "scratch", "pending", "OB", "excused"])
+State = namedtuple("State", ["F", "I", "OL", "P", "Q", "head", "static_start", "static_items", "heap_time",
+                             "heap_entry", "slot_data", "free", "stats", "out", "scratch", "pending", "OB", "excused"])
+
+
+def heap_times(capacity: int) -> np.ndarray:
+    """Zeroed float64 array for the queue's times, placed so that each node's four children
+    (positions ``4 i + 1`` to ``4 i + 4``, ``pge.core.queue``) share one 32-byte block and so
+    one cache line."""
+    buffer = np.zeros(capacity + 4)
+    skip = (-(buffer.ctypes.data + 8) % 32) // 8
+    return buffer[skip : skip + capacity]
 
 
 class EngineState:
@@ -46,9 +55,8 @@ class EngineState:
         self.head = np.full(1, -1, dtype=np.int64)
         self.static_start = np.zeros(2, dtype=np.int64)
         self.static_items = np.zeros(0, dtype=np.int64)
-        self.heap = np.zeros(event_capacity, dtype=np.int64)
-        self.heap_time = np.zeros(event_capacity)  # by heap position, beside ``heap``
-        self.heap_key = np.zeros(event_capacity, dtype=np.int64)
+        self.heap_time = heap_times(event_capacity)
+        self.heap_entry = np.zeros((event_capacity, 2), dtype=np.int64)
         self.slot_data = np.zeros((event_capacity, 5), dtype=np.int64)
         self.free = np.arange(event_capacity, dtype=np.int64)[::-1].copy()
         self.Q[L.FREE_N] = event_capacity
@@ -134,21 +142,19 @@ class EngineState:
         free_now = int(self.Q[L.FREE_N])
         if free_now >= want:
             return
-        old = self.heap.shape[0]
+        old = self.heap_time.shape[0]
         capacity = max(2 * old, old + want - free_now)
         grown = capacity - old
-        heap = np.zeros(capacity, dtype=np.int64)
-        heap[:old] = self.heap
-        heap_time = np.zeros(capacity)
+        heap_time = heap_times(capacity)
         heap_time[:old] = self.heap_time
-        heap_key = np.zeros(capacity, dtype=np.int64)
-        heap_key[:old] = self.heap_key
+        heap_entry = np.zeros((capacity, 2), dtype=np.int64)
+        heap_entry[:old] = self.heap_entry
         slot_data = np.zeros((capacity, 5), dtype=np.int64)
         slot_data[:old] = self.slot_data
         free = np.zeros(capacity, dtype=np.int64)
         free[:free_now] = self.free[:free_now]
         free[free_now : free_now + grown] = np.arange(capacity - 1, old - 1, -1)
-        self.heap, self.heap_time, self.heap_key, self.slot_data, self.free = heap, heap_time, heap_key, slot_data, free
+        self.heap_time, self.heap_entry, self.slot_data, self.free = heap_time, heap_entry, slot_data, free
         self.Q[L.FREE_N] = free_now + grown
         self.refresh()
 
