@@ -73,6 +73,7 @@ from pge.core.tuning import (
     ISLAND_ITERATIONS,
     LCP_LIMIT,
     MAX_TURN,
+    PARALLEL,
     PUSH_RATE,
     PUSH_SLOP,
     ROW_BUDGET,
@@ -1696,6 +1697,123 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
     return scaled
 
 
+@njit(cache=True, inline="always")
+def _least_energy(relative, along):
+    """The factor on a part's motion beyond its rigid motion at which its energy at the
+    step's end, ``relative s^2 - along s`` plus what does not depend on ``s``, is least
+    within [0, 1]."""
+    if relative <= 0.0:
+        return 1.0
+    return min(max(0.5 * along / relative, 0.0), 1.0)
+
+
+@njit(cache=True)
+def _kept_motion(F, members, velocities, labels, grounded, rows, pairs, count):
+    """Each body's velocity and spin in the motion its part keeps whatever its bodies do to
+    each other: the part's rigid motion (``_rigid_motion``) where no force joins it to a fixed
+    body; where forces do, only its momentum along a fixed face that presses it without
+    friction (every such press frictionless, their normals parallel), as a translation; else
+    none."""
+    m = members.shape[0]
+    rigid = _rigid_motion(F, members, velocities, labels, grounded)
+    pressed = _pressed(rows, count)
+    seen = np.zeros(m, dtype=np.bool_)
+    free = grounded.copy()
+    tx = np.zeros(m)
+    ty = np.zeros(m)
+    for c in range(count):
+        if not pressed[c] or pairs[c, 1] >= 0:
+            continue
+        r = labels[pairs[c, 0]]
+        if rows[c, LAMBDA_T] != 0.0:
+            free[r] = False
+        elif not seen[r]:
+            seen[r] = True
+            tx[r] = -rows[c, NY]
+            ty[r] = rows[c, NX]
+        elif abs(tx[r] * rows[c, NX] + ty[r] * rows[c, NY]) > PARALLEL:
+            free[r] = False
+    total = np.zeros(m)
+    along = np.zeros(m)
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and free[r] and seen[r]:
+            mass = 1.0 / F[members[k], L.INV_MASS]
+            total[r] += mass
+            along[r] += mass * (velocities[k, 0] * tx[r] + velocities[k, 1] * ty[r])
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and free[r] and seen[r]:
+            rigid[k, 0] = along[r] / total[r] * tx[r]
+            rigid[k, 1] = along[r] / total[r] * ty[r]
+            rigid[k, 2] = 0.0
+    return rigid
+
+
+@njit(cache=True)
+def _lift_paid(F, members, now, end, lift, rows, pairs, count, h):
+    """The lift stage's energy: a push-out lift moves a body without leaving it a speed
+    (``_push_out``), but a body lifted against its acceleration (gravity) gains the potential
+    energy ``-m a . h lift / 2`` that no force paid for. A pentagon rocking in a cradle of
+    circles sinks into them a little at every step as it turns (the step's straight line
+    cannot follow the contact), and lifted out at every step it rocked higher and higher.
+    Each part the step's forces join (``_force_parts``, as the energy stage) pays for its
+    lifts from its motion at the step's end beyond the motion it keeps (``_kept_motion``:
+    its momentum stays where nothing outside it acts), scaled by the factor that takes the
+    gain out (``_work_out``), or as far as that motion holds (``_least_energy``; what is
+    left is a still part lifted out of a depth its sinking lost before). Returns whether any
+    part paid: its points then open a little less over the step, and the step finds its
+    arcs and its push-out again."""
+    m = members.shape[0]
+    labels, grounded = _force_parts(rows, pairs, count, m)
+    owed = np.zeros(m)
+    scale = np.zeros(m)
+    for k in range(m):
+        r = labels[k]
+        if r < 0:
+            continue
+        i = members[k]
+        mass = 1.0 / F[i, L.INV_MASS]
+        ax = 0.5 * h * mass * F[i, L.FREE_AX]
+        ay = 0.5 * h * mass * F[i, L.FREE_AY]
+        owed[r] -= ax * lift[k, 0] + ay * lift[k, 1]
+        scale[r] += _kinetic(F, i, now[k, 0], now[k, 1], now[k, 2]) + abs(ax * (now[k, 0] + end[k, 0]) + ay * (now[k, 1] + end[k, 1]))
+    paying = False
+    for r in range(m):
+        if owed[r] > ENERGY_ROUNDING * scale[r]:
+            paying = True
+        else:
+            owed[r] = 0.0
+    if not paying:
+        return False
+    rigid = _kept_motion(F, members, end, labels, grounded, rows, pairs, count)
+    relative = np.zeros(m)
+    along = np.zeros(m)
+    for k in range(m):
+        r = labels[k]
+        if r < 0 or owed[r] == 0.0:
+            continue
+        i = members[k]
+        mass = 1.0 / F[i, L.INV_MASS]
+        relative[r] += _kinetic(F, i, end[k, 0] - rigid[k, 0], end[k, 1] - rigid[k, 1], end[k, 2] - rigid[k, 2])
+        along[r] += 0.5 * h * mass * (F[i, L.FREE_AX] * (end[k, 0] - rigid[k, 0]) + F[i, L.FREE_AY] * (end[k, 1] - rigid[k, 1]))
+    factor = np.ones(m)
+    for r in range(m):
+        if owed[r] == 0.0:
+            continue
+        kept = relative[r] - along[r] - owed[r]
+        if kept >= 0.0:
+            factor[r] = _work_out(relative[r], along[r], kept)
+        else:
+            factor[r] = _least_energy(relative[r], along[r])
+    for k in range(m):
+        r = labels[k]
+        if r >= 0 and factor[r] < 1.0:
+            for q in range(3):
+                end[k, q] = rigid[k, q] + factor[r] * (end[k, q] - rigid[k, q])
+    return True
+
+
 @njit(cache=True)
 def _pressed(rows, count):
     """Whether each row has an impulse."""
@@ -2263,6 +2381,11 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     _solved_arcs(S, now, end, rows, pairs, count, h)
     lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y)
     sweeps += pushes
+    if _lift_paid(F, members, now, end, lift, rows, pairs, count, h):
+        # The paid motion opens its points a little less: its arcs and the push-out again.
+        _solved_arcs(S, now, end, rows, pairs, count, h)
+        lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y)
+        sweeps += pushes
     labels, fastest, deepest = _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed)
     S.stats[L.S_ISLAND_STEPS] += 1
     order = np.argsort(keys)

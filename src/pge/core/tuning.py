@@ -56,6 +56,10 @@ SIMULTANEOUS = 1e-3
 #: the island's kinetic energy and the work its accelerations do over the step (rounding);
 #: beyond it the energy stage (``_no_gain``) scales the island's relative velocities back
 ENERGY_ROUNDING = 1e-13
+#: two contact normals are parallel (one fixed face) where the sine of their angle is below
+#: this: a part pressed only on such faces without friction keeps its momentum along them
+#: while it pays for a lift (``pge.contact.island._kept_motion``)
+PARALLEL = 1e-9
 #: at most this many sweeps of the sequential-impulse solve at each step (it always returns)
 ISLAND_ITERATIONS = 400
 #: at most this many sweeps of the impact stage (inelastic, so every sweep only takes kinetic
