@@ -24,6 +24,7 @@ from pge.contact.manifold import NCOLUMNS, NX, NY, PX, PY, SEPARATION, polygon_p
 from pge.core.impulse import contact_impulse, patch_impulse
 from pge.core.motion import advance, orient
 from pge.core.predict import new_mark, place, predict
+from pge.core.prefetch import prefetch_row
 from pge.core.queue import pop_earliest
 from pge.core.response import apply_impulse, combine, contact_response
 from pge.core.tuning import CONTACT_MARGIN, FACE_DIP, FACE_HYSTERESIS, SIMULTANEOUS, STORM_SPAN, STORM_TICKS, TOUCHING
@@ -34,6 +35,8 @@ from pge.toi.rotating import rotating_polygon_polygon_contact
 
 _INF = math.inf
 CIRCLE = 0
+#: the bits of a queue key that hold one body id (``pge.core.layout``, ``ID_SHIFT``)
+_ID_MASK = (1 << L.ID_SHIFT) - 1
 
 
 # ---------------------------------------------------------------- work list
@@ -438,6 +441,25 @@ def _report(out, t, a, b, code):
     return code
 
 
+@njit(cache=True, inline="always")
+def ask_ahead(S):
+    """Start loading what the next event will read first: its slot and its bodies' rows
+    (named by the earliest entry's key; ``pge.core.prefetch``)."""
+    F = S.F
+    I = S.I
+    key = S.heap_entry[0, 0]
+    prefetch_row(S.slot_data, S.heap_entry[0, 1])
+    kind = key >> L.KIND_SHIFT
+    if kind == L.COLLISION or kind == L.HORIZON_EVENT:
+        last = key & _ID_MASK  # the body of a horizon; the larger of a collision's two
+        prefetch_row(I, last)
+        prefetch_row(F, last)
+        if kind == L.COLLISION:
+            first = (key >> L.ID_SHIFT) & _ID_MASK
+            prefetch_row(I, first)
+            prefetch_row(F, first)
+
+
 @njit(cache=True)
 def run(S, until, notify_all, polygons):
     """Process events up to time ``until``; return a code saying why it stopped.
@@ -479,6 +501,8 @@ def run(S, until, notify_all, polygons):
         if heap_time[0] > until:
             return L.DONE
         slot, t, key = pop_earliest(S)
+        if Q[L.HEAP_N] > 0:
+            ask_ahead(S)
         kind = key >> L.KIND_SHIFT
         a = slot_data[slot, 0]
         b = slot_data[slot, 1]
