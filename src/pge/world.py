@@ -1013,9 +1013,13 @@ class World:
         x0, y0, x1, y1 = self._bounds
         # Cells: a few typical bodies wide, but never more cells than about 4 per body.
         cell = self._cell_option or max(4.0 * typical, math.sqrt((x1 - x0) * (y1 - y0) / (4.0 * len(ids) + 4.0)))
-        # Travel per horizon: as far as still fits the widest moving body in one cell.
+        # Travel per horizon: four typical reaches, or as far as still fits the widest moving
+        # body in one cell if that is further (the cells then grow to fit the travel). Longer
+        # travel means fewer horizons and more candidates each; four reaches was the fastest
+        # of 2, 3, 4 and 5 on the hard-disc gas at 1,000, 10,000 and 100,000 discs
+        # (benchmarks/README.md, "Horizons against the skin").
         widest = max((self._extent(i) for i in moving), default=0.0)
-        self._travel = self._skin_option or max(2.0 * typical, cell - widest)
+        self._travel = self._skin_option or max(4.0 * typical, cell - widest)
         state.P[L.TRAVEL] = self._travel
         cell = max([cell] + [self._box_span(i) for i in moving])
         self._lay_grid(cell)
