@@ -68,7 +68,7 @@ def file_in_cell(S, i):
     I[i, L.CELL] = c
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def gather(S, i, pad=0.0):
     """Write into ``scratch`` every body whose box may overlap body ``i``'s box grown by
     ``pad`` on every side; return how many.

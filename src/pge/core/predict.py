@@ -156,9 +156,8 @@ def predict(S, i, mark, polygons):
     pair turns and no two polygons are ever predicted (two fixed bodies never are), and
     the version compiled for None has no rotating or polygon-polygon kernel in it.
 
-    Inlined into its one caller, ``drain_predictions``, as ``gather`` is into it: a
-    compiled call passes every array of ``S`` on the stack, about 150 words, and these
-    run about once an event.
+    Inlined into its one caller, ``drain_predictions``: a compiled call passes every array
+    of ``S`` on the stack, about 150 words, and this runs about once an event.
     """
     F = S.F
     I = S.I
