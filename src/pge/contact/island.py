@@ -1625,6 +1625,17 @@ def _rise_out(sums, work, cap, allowed, rounding):
     return low
 
 
+@njit(cache=True, inline="always")
+def _scale_beyond(velocities, rigid, labels, factor):
+    """Scale each body's velocity and spin beyond ``rigid`` by its part's ``factor`` (the
+    energy stage's and the lift's payment)."""
+    for k in range(velocities.shape[0]):
+        r = labels[k]
+        if r >= 0 and factor[r] < 1.0:
+            for q in range(3):
+                velocities[k, q] = rigid[k, q] + factor[r] * (velocities[k, q] - rigid[k, q])
+
+
 @njit(cache=True)
 def _no_gain(F, members, now, end, rows, pairs, count, h):
     """The energy stage: over the step the contact forces may do no positive work. Each
@@ -1689,11 +1700,7 @@ def _no_gain(F, members, now, end, rows, pairs, count, h):
         factor[r] = min(factor[r], _rise_out(power[r], work, factor[r], rounding + floats[r], rounding))
         if factor[r] < 1.0:
             scaled += 1
-    for k in range(m):
-        r = labels[k]
-        if r >= 0 and factor[r] < 1.0:
-            for q in range(3):
-                end[k, q] = rigid[k, q] + factor[r] * (end[k, q] - rigid[k, q])
+    _scale_beyond(end, rigid, labels, factor)
     return scaled
 
 
@@ -1806,11 +1813,7 @@ def _lift_paid(F, members, now, end, lift, rows, pairs, count, h):
             factor[r] = _work_out(relative[r], along[r], kept)
         else:
             factor[r] = _least_energy(relative[r], along[r])
-    for k in range(m):
-        r = labels[k]
-        if r >= 0 and factor[r] < 1.0:
-            for q in range(3):
-                end[k, q] = rigid[k, q] + factor[r] * (end[k, q] - rigid[k, q])
+    _scale_beyond(end, rigid, labels, factor)
     return True
 
 
