@@ -1,7 +1,7 @@
 """The compiled event loop: collisions and horizons; timers and frames go back to Python.
 
 State is one named tuple ``S`` of arrays (``pge.core.state.State``: ``S.F``, ``S.I``,
-``S.heap``, ...); column meanings are in ``pge.core.layout``.
+``S.heap_time``, ...); column meanings are in ``pge.core.layout``.
 
 One event (``run``): pop the earliest queue entry; skip it if stale (a
 body's invalidation counter moved on); advance the bodies involved to the

@@ -1,7 +1,7 @@
 """The engine's arrays, their growth, and the grid's static part (Python side).
 
 ``EngineState.S`` is the ``State`` handed to every compiled function, a named tuple of
-the arrays (compiled code reads ``S.F``, ``S.heap``, ...); it is rebuilt whenever an
+the arrays (compiled code reads ``S.F``, ``S.heap_time``, ...); it is rebuilt whenever an
 array is replaced by a larger one.
 """
 
@@ -19,8 +19,8 @@ from pge.core.tuning import STORM_LIMIT, STORM_PER_BODY
 #: The engine state as compiled code sees it: bodies (``F`` floats, ``I`` ints, one row
 #: each, columns in ``pge.core.layout``), polygon outlines turned (``OL``) and unturned
 #: (``OB``), world parameters (``P`` floats, ``Q`` ints), the grid (``head``,
-#: ``static_start``, ``static_items``), the event queue (``heap`` with ``heap_time`` and
-#: ``heap_key`` beside it, ``slot_data``, ``free``), the counters of ``World.stats``
+#: ``static_start``, ``static_items``), the event queue (by heap position ``heap_time``, and
+#: ``heap_entry``: key and slot; ``slot_data``, ``free``), the counters of ``World.stats``
 #: (``stats``), the record of the event that returned to Python (``out``), work space
 #: (``scratch``), the bodies waiting to be predicted (``pending``) and the pairs that
 #: overlapped at the start (``excused``).
