@@ -1,4 +1,5 @@
-"""The event loop's borrowed state (pge.core.borrow): the same arrays, without owner records."""
+"""Borrowed arrays (pge.core.borrow): the event loop's state and the contact solve's arrays,
+the same arrays without owner records."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import pytest
 from numba import njit
 from numba.core.errors import TypingError
 
-from pge.core.borrow import borrowed
+from pge.core.borrow import borrowed, borrowed_array
 
 
 @njit
@@ -28,6 +29,41 @@ def _borrow_in_loop(S, rounds):
         B = borrowed(S)
         total += B[0][k % B[0].shape[0], 0]
     return total
+
+
+@njit
+def _scaled_rows(vel, rows):
+    # passed through a helper call per row, as the contact solve's sweeps do
+    total = 0.0
+    for k in range(rows.shape[0]):
+        total += _row_push(borrowed_array(vel), borrowed_array(rows), k)
+    return total
+
+
+@njit
+def _row_push(vel, rows, k):
+    vel[k % vel.shape[0]] += rows[k, 0]
+    return vel[k % vel.shape[0]]
+
+
+def test_a_borrowed_array_is_the_callers_array_and_keeps_its_owner():
+    vel = np.zeros(3)
+    rows = np.arange(10.0).reshape(5, 2).copy()
+    references = sys.getrefcount(vel), sys.getrefcount(rows)
+    total = _scaled_rows(vel, rows)
+    assert vel.tolist() == [0.0 + 6.0, 2.0 + 8.0, 4.0]
+    assert total == 0.0 + 2.0 + 4.0 + 6.0 + 10.0
+    assert (sys.getrefcount(vel), sys.getrefcount(rows)) == references
+    assert vel.flags.owndata and rows.flags.owndata
+
+
+def test_only_arrays_can_be_borrowed_one_at_a_time():
+    @njit
+    def scalar(x):
+        return borrowed_array(x)
+
+    with pytest.raises(TypingError):
+        scalar(1.0)
 
 
 def test_borrowed_arrays_are_the_callers_arrays():

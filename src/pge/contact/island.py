@@ -56,6 +56,7 @@ from pge.contact.manifold import (
     polygon_polygon_points,
 )
 from pge.core import layout as L
+from pge.core.borrow import borrowed_array
 from pge.core.response import combine
 from pge.core.engine import touch_one
 from pge.core.grid import gather
@@ -916,6 +917,17 @@ def _solve(F, vel, rows, pairs, count, speed, down_x, down_y, most, lemke_limit)
     order = np.argsort(height)
     starts = starts[order]
     sizes = sizes[order]
+    # The sweeps pass vel, rows and pairs (this call's arguments, which its caller keeps
+    # alive) through small inlined helpers a few times per pair per sweep: borrowed, they
+    # count no references there.
+    return _sweeps(F, borrowed_array(vel), borrowed_array(rows), borrowed_array(pairs), count, starts, sizes, blocks,
+                   speed, most, lemke_limit)
+
+
+@njit(cache=True)
+def _sweeps(F, vel, rows, pairs, count, starts, sizes, blocks, speed, most, lemke_limit):
+    """``_solve``'s warm start and sweeps over the pairs in the order ``starts`` (first rows)
+    and ``sizes`` (points); ``vel``, ``rows`` and ``pairs`` are borrowed."""
     for b in range(blocks):
         c = starts[b]
         _push(rows, vel, pairs, c, rows[c, LAMBDA_N], 0.0)

@@ -21,6 +21,13 @@ from numba.core import cgutils, types
 from numba.extending import intrinsic
 
 
+def _dropped_owner(context, builder, kind, value):
+    """The array ``value`` of type ``kind`` with its owner record set to null."""
+    array = context.make_array(kind)(context, builder, value=value)
+    array.meminfo = cgutils.get_null_value(array.meminfo.type)
+    return array._getvalue()
+
+
 @intrinsic
 def borrowed(typingctx, state):
     """``state`` (a tuple of arrays) with every array's owner record dropped.
@@ -33,11 +40,24 @@ def borrowed(typingctx, state):
 
     def codegen(context, builder, signature, args):
         (value,) = args
-        items = []
-        for k, kind in enumerate(state):
-            array = context.make_array(kind)(context, builder, value=builder.extract_value(value, k))
-            array.meminfo = cgutils.get_null_value(array.meminfo.type)
-            items.append(array._getvalue())
+        items = [_dropped_owner(context, builder, kind, builder.extract_value(value, k)) for k, kind in enumerate(state)]
         return context.make_tuple(builder, state, items)
 
     return state(state), codegen
+
+
+@intrinsic
+def borrowed_array(typingctx, array):
+    """``array`` with its owner record dropped: for an array that a caller keeps alive (an
+    argument of the compiled function that borrows it, or a local of a caller passed down)
+    until the code that uses the borrowed copy returns, and that nothing stores or returns.
+    The contact solve's sweeps pass their arrays through small inlined helpers thousands of
+    times a step, and each pass counted references (two atomic instructions) where the
+    arithmetic around them is a few additions."""
+    if not isinstance(array, types.Array):
+        return None
+
+    def codegen(context, builder, signature, args):
+        return _dropped_owner(context, builder, array, args[0])
+
+    return array(array), codegen
