@@ -32,7 +32,7 @@ sys.path.insert(0, HERE)
 import corpus  # noqa: E402
 import games  # noqa: E402
 
-from pge.contact import island as K  # noqa: E402
+from pge.contact import island as K, rows as KR, solve as KS, arcs as KA, pushout as KP  # noqa: E402
 from pge.contact import islands as islands_module  # noqa: E402
 from pge.core import layout as L  # noqa: E402
 
@@ -77,7 +77,7 @@ def timed_step_island(clock):
         if shorter < h:
             h = shorter
             speed = K._speed_scale(F, members, now, h, pull)
-        timed("mid-step rows", K._midstep_rows, S, now, rows, pairs, count, h)
+        timed("mid-step rows", KA._midstep_rows, S, now, rows, pairs, count, h)
         K._force_targets(rows, count, h)
         end = np.empty_like(now)
         for k in range(members.shape[0]):
@@ -86,10 +86,10 @@ def timed_step_island(clock):
             end[k, 1] = now[k, 1] + h * F[i, L.FREE_AY]
             end[k, 2] = now[k, 2]
         K._end_targets(rows, now, pairs, count)
-        sweeps += timed("forces (solve)", K._solve, F, end, rows, pairs, count, speed, down_x, down_y,
+        sweeps += timed("forces (solve)", KS._solve, F, end, rows, pairs, count, speed, down_x, down_y,
                         K.ISLAND_ITERATIONS, K.LCP_LIMIT)
-        timed("arcs (end and inside)", K._solved_arcs, S, now, end, rows, pairs, count, h)
-        lift, pushes = timed("push-out", K._push_out, F, now, end, rows, pairs, count, h, natural, down_x, down_y)
+        timed("arcs (end and inside)", KA._solved_arcs, S, now, end, rows, pairs, count, h)
+        lift, pushes = timed("push-out", KP._push_out, F, now, end, rows, pairs, count, h, natural, down_x, down_y)
         sweeps += pushes
         labels, fastest, deepest = timed("finish (touch)", K._finish, S, members, local, now, end, lift, rows,
                                          pairs, count, h, speed)
@@ -97,8 +97,8 @@ def timed_step_island(clock):
         order = np.argsort(keys)
         impulses = np.empty((count, 3))
         for c in range(count):
-            impulses[c, 0] = rows[order[c], K.LAMBDA_N]
-            impulses[c, 1] = rows[order[c], K.LAMBDA_T]
+            impulses[c, 0] = rows[order[c], KR.LAMBDA_N]
+            impulses[c, 1] = rows[order[c], KR.LAMBDA_T]
             impulses[c, 2] = struck[order[c]]
         clock["rows"][0] += count
         clock["rows"][1] += 1

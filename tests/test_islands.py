@@ -716,17 +716,17 @@ def test_an_active_set_whose_answer_pulls_is_tried_again_without_the_pulling_poi
     """A box resting on four points (a statically indeterminate support): on the set of all
     four, the answer nearest a lopsided guess pulls at two of them. The exact solve then
     tries the set without them, which carries the weight with no moment."""
-    from pge.contact import island as K
+    from pge.contact import rows as KR, solve as KS
     from pge.contact.manifold import NY
 
     count = 4
     arms = np.array([-1.0, -0.9, 0.9, 1.0])
     mass, inertia, g, h = 1.0, 0.5, 9.81, ISLAND_STEP
     weight = mass * g * h
-    rows = np.zeros((count, K.NSOLVE))
+    rows = np.zeros((count, KR.NSOLVE))
     rows[:, NY] = 1.0
-    rows[:, K.RAX] = arms
-    rows[:, K.RAY] = -0.5
+    rows[:, KR.RAX] = arms
+    rows[:, KR.RAY] = -0.5
     pairs = np.zeros((count, 4), dtype=np.int64)
     pairs[:, 1] = -1  # each point on its own fixed body
     pairs[:, 3] = 1 + np.arange(count)
@@ -734,11 +734,11 @@ def test_an_active_set_whose_answer_pulls_is_tried_again_without_the_pulling_poi
     base = np.full(count, -g * h)
     row = np.arange(count)
     guess = np.array([2.48, 1.23, 1.65, 0.08]) * weight
-    first, state = K._active_set(W, base, rows, pairs, row, count, 0, guess)
-    assert state == K.SET_MOVED
+    first, state = KS._active_set(W, base, rows, pairs, row, count, 0, guess)
+    assert state == KS.SET_MOVED
     assert (first >= 0.0).all() and (first == 0.0).sum() == 2
-    answer, state = K._active_set(W, base, rows, pairs, row, count, 0, first)
-    assert state == K.SET_SOLVED
+    answer, state = KS._active_set(W, base, rows, pairs, row, count, 0, first)
+    assert state == KS.SET_SOLVED
     assert (answer >= 0.0).all()
     assert answer.sum() == pytest.approx(weight, rel=1e-12)
     assert answer @ arms == pytest.approx(0.0, abs=1e-12 * weight)
@@ -750,24 +750,24 @@ def test_an_active_set_whose_friction_leaves_its_cone_moves_to_sliding():
     sticks needs more friction than the cone holds, so the set moves to sliding down the
     slope, where the answer is exact: the normal impulse carries the weight's normal part and
     the friction is mu times it, against the slide."""
-    from pge.contact import island as K
+    from pge.contact import rows as KR, solve as KS
     from pge.contact.manifold import NY
 
     slope, mu, h = math.radians(30.0), 0.3, ISLAND_STEP
     g_normal, g_along = G * math.cos(slope), G * math.sin(slope)
-    rows = np.zeros((1, K.NSOLVE))
+    rows = np.zeros((1, KR.NSOLVE))
     rows[0, NY] = 1.0  # the slope's frame: its normal up, its tangent direction (-1, 0)
-    rows[0, K.MU] = mu
+    rows[0, KR.MU] = mu
     pairs = np.array([[0, -1, 0, 1]], dtype=np.int64)
     W = np.eye(2)  # unit inverse mass, no turning
     base = np.array([-g_normal * h, g_along * h])  # the speeds gravity gives in a step
     row = np.zeros(2, dtype=np.int64)
     guess = np.array([g_normal * h, -0.5 * mu * g_normal * h])  # pushing, sticking
-    moved, state = K._active_set(W, base, rows, pairs, row, 1, 1, guess)
-    assert state == K.SET_MOVED
+    moved, state = KS._active_set(W, base, rows, pairs, row, 1, 1, guess)
+    assert state == KS.SET_MOVED
     assert moved[1] == pytest.approx(-mu * moved[0], rel=1e-15)  # at the cone's edge: sliding
-    answer, state = K._active_set(W, base, rows, pairs, row, 1, 1, moved)
-    assert state == K.SET_SOLVED
+    answer, state = KS._active_set(W, base, rows, pairs, row, 1, 1, moved)
+    assert state == KS.SET_SOLVED
     assert answer[0] == pytest.approx(g_normal * h, rel=1e-12)
     assert answer[1] == pytest.approx(-mu * g_normal * h, rel=1e-12)
     sliding = base[1] + answer[1]
@@ -784,22 +784,22 @@ def test_friction_at_its_cone_s_edge_to_rounding_slides_in_the_solve_s_test(load
     at 0.019 m/s and was refused, and the impact stage stopped after its 16 sweeps: corpus
     scene 93's left a point closing at 0.03 m/s that sank 1e-5 into a neighbour at mid-step.
     Well inside the cone, the slide is the error, as before."""
-    from pge.contact import island as K
+    from pge.contact import rows as KR, solve as KS
     from pge.contact.manifold import NY
 
-    rows = np.zeros((2, K.NSOLVE))
+    rows = np.zeros((2, KR.NSOLVE))
     rows[:, NY] = 1.0  # normals up; the tangent is (-1, 0)
-    rows[0, K.MU] = 0.5
-    rows[0, K.LAMBDA_N] = load
-    rows[1, K.LAMBDA_N] = 0.01  # another body pressed on the floor, without friction
+    rows[0, KR.MU] = 0.5
+    rows[0, KR.LAMBDA_N] = load
+    rows[1, KR.LAMBDA_N] = 0.01  # another body pressed on the floor, without friction
     pairs = np.array([[0, -1, 0, 2], [1, -1, 1, 2]], dtype=np.int64)
-    starts, sizes, blocks = K._blocks(pairs, 2)
+    starts, sizes, blocks = KS._blocks(pairs, 2)
     vel = np.array([[0.02, 0.0, 0.0], [0.0, 0.0, 0.0]])  # the first slides along +x
     # short of the edge by 8 ulps of the other point's impulse
-    rows[0, K.LAMBDA_T] = 0.5 * load - 8.0 * math.ulp(0.01)
-    assert K._residual(vel, rows, pairs, 2, starts, sizes, blocks) == 0.0
-    rows[0, K.LAMBDA_T] = 0.25 * load  # well inside the cone: sticking, and it slides
-    assert K._residual(vel, rows, pairs, 2, starts, sizes, blocks) == pytest.approx(0.02, rel=1e-12)
+    rows[0, KR.LAMBDA_T] = 0.5 * load - 8.0 * math.ulp(0.01)
+    assert KS._residual(vel, rows, pairs, 2, starts, sizes, blocks) == 0.0
+    rows[0, KR.LAMBDA_T] = 0.25 * load  # well inside the cone: sticking, and it slides
+    assert KS._residual(vel, rows, pairs, 2, starts, sizes, blocks) == pytest.approx(0.02, rel=1e-12)
 
 
 def test_a_box_bouncing_on_a_box_resting_on_a_floor_keeps_its_restitution_at_every_bounce():
@@ -999,13 +999,13 @@ def _energy_stage_bodies(masses, inertias, accelerations):
 def _pressed_on_a_floor(mass, inertia, impulse):
     """State, row and pair for ``_no_gain``: one body under gravity pressed on a fixed floor
     (normal up) by ``impulse``."""
-    from pge.contact import island as K
+    from pge.contact import rows as KR
     from pge.contact.manifold import NY
 
     F = _energy_stage_bodies([mass], [inertia], np.array([[0.0, -G]]))
-    rows = np.zeros((1, K.NSOLVE))
+    rows = np.zeros((1, KR.NSOLVE))
     rows[0, NY] = 1.0
-    rows[0, K.LAMBDA_N] = impulse
+    rows[0, KR.LAMBDA_N] = impulse
     return F, rows, np.array([[0, -1, 0, 1]], dtype=np.int64)
 
 
@@ -1042,18 +1042,18 @@ def test_the_energy_stage_takes_out_the_work_of_friction_on_a_part_and_keeps_its
     momentum and angular momentum kept, the point's relative velocity scaled (a point that
     sticks still sticks), and the third body keeps its motion. The work out, the power at
     the step's end is out too (its bound is the one that binds here: the slip is reversed)."""
-    from pge.contact import island as K
+    from pge.contact import rows as KR, energy as KE
     from pge.contact.manifold import NX
 
     h = ISLAND_STEP
     F = _energy_stage_bodies([1.0, 2.0, 1.5], [0.01, 0.03, 0.02], np.zeros((3, 2)))
     F[:, L.X] = [0.1, 0.22, 0.33]  # the first body's arm reaches the second's
     F[:, L.Y] = [0.5, 0.49, 0.5]
-    rows = np.zeros((2, K.NSOLVE))
+    rows = np.zeros((2, KR.NSOLVE))
     rows[:, NX] = 1.0
-    rows[0, K.RAX], rows[0, K.RAY], rows[0, K.RBX], rows[0, K.RBY] = 0.05, 0.01, -0.07, 0.02
-    rows[0, K.LAMBDA_N], rows[0, K.LAMBDA_T] = 1e-3, -2e-3
-    rows[1, K.RAX], rows[1, K.RBX] = 0.05, -0.05  # the third body near the second, no force
+    rows[0, KR.RAX], rows[0, KR.RAY], rows[0, KR.RBX], rows[0, KR.RBY] = 0.05, 0.01, -0.07, 0.02
+    rows[0, KR.LAMBDA_N], rows[0, KR.LAMBDA_T] = 1e-3, -2e-3
+    rows[1, KR.RAX], rows[1, KR.RBX] = 0.05, -0.05  # the third body near the second, no force
     pairs = np.array([[0, 1, 0, 1], [1, 2, 1, 2]], dtype=np.int64)
     members = np.arange(3)
     now = np.array([[0.3, -0.1, 2.0], [0.1, 0.05, -1.0], [-0.2, 0.4, 5.0]])
@@ -1065,14 +1065,14 @@ def test_the_energy_stage_takes_out_the_work_of_friction_on_a_part_and_keeps_its
         end[k, 0] += sign * jx * F[k, L.INV_MASS]
         end[k, 1] += sign * jy * F[k, L.INV_MASS]
         end[k, 2] += sign * (rx * jy - ry * jx) * F[k, L.INV_INERTIA]
-    assert K._relative(now, pairs, rows, 0)[1] < 0.0
+    assert KR._relative(now, pairs, rows, 0)[1] < 0.0
     work = _contact_work(F, now, end, h)
     assert work > 1e-4
     momentum = (1.0 / F[:2, L.INV_MASS]) @ end[:2, :2]
     turning = _angular_momentum(F[:2], end[:2])
-    slip = np.array(K._relative(end, pairs, rows, 0))
+    slip = np.array(KR._relative(end, pairs, rows, 0))
     third = end[2].copy()
-    assert K._no_gain(F, members, now, end, rows, pairs, 2, h) == 1
+    assert KE._no_gain(F, members, now, end, rows, pairs, 2, h) == 1
     # the work out, and the rise inside the step with it: the rise binds here (rounding of
     # the part's energy: the third body is not in it)
     bound = ENERGY_ROUNDING * _kinetic_energy(F[:2], now[:2])
@@ -1080,7 +1080,7 @@ def test_the_energy_stage_takes_out_the_work_of_friction_on_a_part_and_keeps_its
     assert 0.5 * bound <= _rise_inside(F, now, end, h) <= 1.01 * bound
     assert (1.0 / F[:2, L.INV_MASS]) @ end[:2, :2] == pytest.approx(momentum, rel=1e-14)
     assert _angular_momentum(F[:2], end[:2]) == pytest.approx(turning, rel=1e-13)
-    ratio = np.array(K._relative(end, pairs, rows, 0)) / slip
+    ratio = np.array(KR._relative(end, pairs, rows, 0)) / slip
     assert 0.9 < ratio[0] < 1.0
     assert ratio[1] == pytest.approx(ratio[0], rel=1e-12)
     assert (end[2] == third).all()
@@ -1092,7 +1092,7 @@ def test_the_energy_stage_scales_a_part_on_a_fixed_support_about_rest_and_under_
     kinetic energy gained is at most what gravity did over its displacement and the forces'
     power at the step's two ends is not positive, one of them at its bound. A part that
     does no positive work is left as it is."""
-    from pge.contact import island as K
+    from pge.contact import energy as KE
 
     h = ISLAND_STEP
     F, rows, pairs = _pressed_on_a_floor(2.0, 0.05, 2.0 * G * h)
@@ -1101,7 +1101,7 @@ def test_the_energy_stage_scales_a_part_on_a_fixed_support_about_rest_and_under_
     end = np.array([[0.5004, 0.0, 3.001]])
     assert _contact_work(F, now, end, h) > 1e-4
     before = end.copy()
-    assert K._no_gain(F, members, now, end, rows, pairs, 1, h) == 1
+    assert KE._no_gain(F, members, now, end, rows, pairs, 1, h) == 1
     assert abs(_contact_work(F, now, end, h)) <= 1e-16
     assert _rise_inside(F, now, end, h) <= 2.0 * (G * h) ** 2 / 32.0  # the float's bound
     factor = end[0, 0] / before[0, 0]
@@ -1110,7 +1110,7 @@ def test_the_energy_stage_scales_a_part_on_a_fixed_support_about_rest_and_under_
     losing = np.array([[0.499, 0.0, 2.99]])
     assert _contact_work(F, now, losing, h) < 0.0
     kept = losing.copy()
-    assert K._no_gain(F, members, now, losing, rows, pairs, 1, h) == 0
+    assert KE._no_gain(F, members, now, losing, rows, pairs, 1, h) == 0
     assert (losing == kept).all()
 
 
@@ -1118,14 +1118,14 @@ def test_the_energy_stage_leaves_a_point_held_in_its_float():
     """A body rising at less than g h, held by its support at the step's end (the float of
     docs/contact.md, "Energy": the step's constant force works while it rises): stopping it
     still gains, so no scaling can take the work out, and the stage leaves it."""
-    from pge.contact import island as K
+    from pge.contact import energy as KE
 
     h = ISLAND_STEP
     F, rows, pairs = _pressed_on_a_floor(1.0, 0.01, 0.5 * G * h)
     now = np.array([[0.0, 0.5 * G * h, 0.0]])
     end = np.array([[0.0, 0.0, 0.0]])
     assert _contact_work(F, now, end, h) > 0.0
-    assert K._no_gain(F, np.array([0]), now, end, rows, pairs, 1, h) == 0
+    assert KE._no_gain(F, np.array([0]), now, end, rows, pairs, 1, h) == 0
     assert (end == 0.0).all()
 
 
@@ -1168,7 +1168,7 @@ def test_the_energy_stage_leaves_no_rise_inside_the_step(speeds, impulse, masses
     round, a slip reversed). After the stage the energy rises nowhere inside the step by
     more than rounding, the work is at most rounding, momentum and angular momentum are
     kept, and no more motion is taken out than needed (the work or the rise at its bound)."""
-    from pge.contact import island as K
+    from pge.contact import rows as KR, energy as KE
     from pge.contact.manifold import NX, NY
 
     h = ISLAND_STEP
@@ -1176,11 +1176,11 @@ def test_the_energy_stage_leaves_no_rise_inside_the_step(speeds, impulse, masses
     F[:, L.X] = [0.1, 0.22]
     F[:, L.Y] = [0.5, 0.49]
     arms = ((0.05, 0.01), (-0.07, 0.02))  # both reach (0.15, 0.51)
-    rows = np.zeros((1, K.NSOLVE))
+    rows = np.zeros((1, KR.NSOLVE))
     rows[0, NX], rows[0, NY] = 1.0, 0.0
-    rows[0, K.RAX], rows[0, K.RAY] = arms[0]
-    rows[0, K.RBX], rows[0, K.RBY] = arms[1]
-    rows[0, K.LAMBDA_N], rows[0, K.LAMBDA_T] = abs(impulse[0]) + 1e-6, impulse[1]
+    rows[0, KR.RAX], rows[0, KR.RAY] = arms[0]
+    rows[0, KR.RBX], rows[0, KR.RBY] = arms[1]
+    rows[0, KR.LAMBDA_N], rows[0, KR.LAMBDA_T] = abs(impulse[0]) + 1e-6, impulse[1]
     pairs = np.array([[0, 1, 0, 1]], dtype=np.int64)
     now = np.array(speeds, dtype=float).reshape(2, 3)
     end = now.copy()
@@ -1193,7 +1193,7 @@ def test_the_energy_stage_leaves_no_rise_inside_the_step(speeds, impulse, masses
     assume(energy > 0.01)
     momentum = (1.0 / F[:, L.INV_MASS]) @ end[:, :2]
     turning = _angular_momentum(F, end)
-    scaled = K._no_gain(F, np.arange(2), now, end, rows, pairs, 1, h)
+    scaled = KE._no_gain(F, np.arange(2), now, end, rows, pairs, 1, h)
     bound = ENERGY_ROUNDING * energy
     slack = 1e-15 * np.sum(np.abs(now) + np.abs(end))  # the rounding of the powers here
     work = _contact_work(F, now, end, h)
@@ -1215,7 +1215,7 @@ def test_the_impact_stage_keeps_of_the_restitution_what_the_energy_allows(speeds
     shrinking the motion before) towards one with it (``hard``, any), each part goes as far
     as its kinetic energy allows and no further: at the share found the energy is at most
     the one before (to rounding), and a little further it is more (or the share is 1)."""
-    from pge.contact import island as K
+    from pge.contact import energy as KE
 
     F = _energy_stage_bodies(masses, [0.05 * m for m in masses], np.zeros((2, 2)))
     before = np.array(speeds[:6]).reshape(2, 3)
@@ -1224,7 +1224,7 @@ def test_the_impact_stage_keeps_of_the_restitution_what_the_energy_allows(speeds
     labels = np.zeros(2, dtype=np.int64)  # one part
     energy = _kinetic_energy(F, before)
     assume(energy > 1e-6)
-    share = K._blend(F, np.arange(2), before, soft, hard, labels)[0]
+    share = KE._blend(F, np.arange(2), before, soft, hard, labels)[0]
     assert 0.0 <= share <= 1.0
     at = lambda s: _kinetic_energy(F, soft + s * (hard - soft))
     assert at(share) <= energy * (1.0 + 2e-13)
@@ -1235,12 +1235,12 @@ def test_the_impact_stage_keeps_of_the_restitution_what_the_energy_allows(speeds
 def test_the_impact_stage_keeps_no_restitution_for_a_part_at_rest():
     """``_blend`` where the part was at rest and its inelastic answer leaves it so: no energy
     to spend on restitution, share 0 (a division by zero in its first form)."""
-    from pge.contact import island as K
+    from pge.contact import energy as KE
 
     F = _energy_stage_bodies([1.0, 2.0], [0.05, 0.1], np.zeros((2, 2)))
     rest = np.zeros((2, 3))
     hard = np.array([[0.1, 0.0, 0.0], [-0.05, 0.0, 0.0]])
-    assert K._blend(F, np.arange(2), rest, rest.copy(), hard, np.zeros(2, dtype=np.int64))[0] == 0.0
+    assert KE._blend(F, np.arange(2), rest, rest.copy(), hard, np.zeros(2, dtype=np.int64))[0] == 0.0
 
 
 @settings(max_examples=200, deadline=None)
@@ -1256,21 +1256,21 @@ def test_a_lift_closes_a_point_no_further_than_its_gap_at_an_instant_allows(gap,
     at the speed returned the point's gap there is its floor exactly (to rounding), and any
     faster closing would take it below. Where the row's features are not at the instant
     (``other``), the pair's deepest point there stands for it."""
-    from pge.contact import island as K
+    from pge.contact import rows as KR, arcs as KA
     from pge.contact.manifold import KEY, SEPARATION
 
     h = ISLAND_STEP
-    rows = np.zeros((1, K.NSOLVE))
+    rows = np.zeros((1, KR.NSOLVE))
     rows[0, KEY] = 7.0
     out = np.zeros((4, rows.shape[1]))
     out[0, KEY] = 3.0 if other else 7.0
     out[0, SEPARATION] = gap
     out[1, KEY] = 9.0
     out[1, SEPARATION] = gap + 1e-6 if not other else gap + 2e-6  # shallower: not the deepest
-    lift = K._closable_at(rows, 0, out, 2, instant * h, h, floor)
+    lift = KA._closable_at(rows, 0, out, 2, instant * h, h, floor)
     moved = lift * h * (instant - instant * instant / 2.0)
     assert gap + moved == pytest.approx(floor, abs=1e-20 + 1e-12 * abs(gap))
-    assert K._closable_at(rows, 0, out, 0, instant * h, h, floor) == -math.inf  # no point there
+    assert KA._closable_at(rows, 0, out, 0, instant * h, h, floor) == -math.inf  # no point there
 
 
 def _signed(low, high):
@@ -1289,13 +1289,13 @@ def test_a_lift_within_its_floor_never_takes_a_gap_below_its_start_within_the_st
     the bound is tight: closing faster sinks it somewhere. Corpus scene 198: a lift that
     closed a touching pair of circles by the end's opening (allowed: the gap was open at the
     end) sank them 3.6e-7 into each other mid-step."""
-    from pge.contact import island as K
+    from pge.contact import pushout as KP
 
     # the gap's height above min(start, 0), written without subtracting the two (rounding)
     s = np.concatenate([np.logspace(-12.0, 0.0, 20001), np.linspace(0.0, 1.0, 4097)[1:]])
     above = max(start, 0.0) + h * (now * s + 0.5 * (end - now) * s * s)
     assume((above >= 0.0).all())
-    lift = K._lift_floor(start, now, end, h)
+    lift = KP._lift_floor(start, now, end, h)
     assume(lift < 0.0)
     scale = abs(now) + abs(end) + abs(start) / h
     # sound: at the bound the gap stays at or above the floor ...

@@ -145,7 +145,7 @@ def test_a_sliding_block_is_slowed_by_mu_n_and_stopped_when_that_suffices():
 
 
 def _stewart_trinkle(W, base, blocks, mus):
-    """The contact LCP as ``pge.contact.island._exact`` builds it: ``W`` over the normal
+    """The contact LCP as ``pge.contact.solve._exact`` builds it: ``W`` over the normal
     directions (first) and one friction direction per block, ``base`` the speeds along them
     with no impulse (targets zero), ``blocks[f]`` the normal rows of block ``f``."""
     count = W.shape[0] - len(blocks)

@@ -58,7 +58,7 @@ SIMULTANEOUS = 1e-3
 ENERGY_ROUNDING = 1e-13
 #: two contact normals are parallel (one fixed face) where the sine of their angle is below
 #: this: a part pressed only on such faces without friction keeps its momentum along them
-#: while it pays for a lift (``pge.contact.island._kept_motion``)
+#: while it pays for a lift (``pge.contact.energy._kept_motion``)
 PARALLEL = 1e-9
 #: at most this many sweeps of the sequential-impulse solve at each step (it always returns)
 ISLAND_ITERATIONS = 400
@@ -89,7 +89,7 @@ CONTACT_MARGIN = 0.01
 #: the part of an overlap a step pushes out (the rest at the following steps)
 PUSH_RATE = 0.8
 #: the instants inside a step, as fractions of it, where the push-out holds each point's gap
-#: on the step's solved motion as well as at its end (pge.contact.island._solved_arcs)
+#: on the step's solved motion as well as at its end (pge.contact.arcs._solved_arcs)
 STEP_INSTANTS = (0.25, 0.5, 0.75)
 #: ... and at this many evenly spaced instants where a point of the pair changes features
 #: within the step (a circle passing a turning polygon's corner: its gap has a kink there,

@@ -5,7 +5,7 @@ Lemke's method adds an artificial variable ``z0`` with covering vector ``e = 1``
 (``w = M z + q + e z0``), starts from the almost complementary basis where ``z0`` makes
 every ``w`` non-negative, and pivots: each variable that leaves the basis brings its
 complement in, until ``z0`` leaves (a solution) or the entering column has no positive
-entry (a ray: the method gives up). For the contact problems of ``pge.contact.island``
+entry (a ray: the method gives up). For the contact problems of ``pge.contact.solve``
 (Stewart and Trinkle's formulation with Coulomb friction, exact in 2D) the matrix is
 copositive-plus on the part that matters and the method ends with a solution; the caller
 still checks the answer and keeps another solver for a ray or a pivot budget run out.
