@@ -32,7 +32,7 @@ sys.path.insert(0, HERE)
 import corpus  # noqa: E402
 import games  # noqa: E402
 
-from pge.contact import island as K, rows as KR, solve as KS, arcs as KA, pushout as KP  # noqa: E402
+from pge.contact import island as K, rows as KR, solve as KS, arcs as KA, pushout as KP, energy as KE  # noqa: E402
 from pge.contact import islands as islands_module  # noqa: E402
 from pge.core import layout as L  # noqa: E402
 
@@ -88,9 +88,15 @@ def timed_step_island(clock):
         K._end_targets(rows, now, pairs, count)
         sweeps += timed("forces (solve)", KS._solve, F, end, rows, pairs, count, speed, down_x, down_y,
                         K.ISLAND_ITERATIONS, K.LCP_LIMIT)
+        timed("energy", KE._no_gain, F, members, now, end, rows, pairs, count, h)
         timed("arcs (end and inside)", KA._solved_arcs, S, now, end, rows, pairs, count, h)
         lift, pushes = timed("push-out", KP._push_out, F, now, end, rows, pairs, count, h, natural, down_x, down_y)
         sweeps += pushes
+        if timed("lift paid", KE._lift_paid, F, members, now, end, lift, rows, pairs, count, h):
+            timed("arcs (end and inside)", KA._solved_arcs, S, now, end, rows, pairs, count, h)
+            lift, pushes = timed("push-out", KP._push_out, F, now, end, rows, pairs, count, h, natural, down_x,
+                                 down_y)
+            sweeps += pushes
         labels, fastest, deepest = timed("finish (touch)", K._finish, S, members, local, now, end, lift, rows,
                                          pairs, count, h, speed)
         S.stats[L.S_ISLAND_STEPS] += 1

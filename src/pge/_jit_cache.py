@@ -6,8 +6,8 @@ could load stale machine code. pge therefore keys the cache directory by a
 hash of every compiled module's source: any change anywhere gets a fresh
 cache. A user's ``NUMBA_CACHE_DIR`` is respected.
 
-It also holds ``njit``, the decorator of every engine kernel outside
-``pge.contact`` (see its docstring for why it is not Numba's own); this file
+It also holds ``njit``, the decorator of every engine kernel (see its
+docstring for why it is not Numba's own); this file
 is part of the hash, since it decides which machine code the kernels get.
 """
 

@@ -53,7 +53,9 @@ from pge.core.tuning import (
     EXACT_AFTER,
     LCP_LIMIT,
     SET_TRIES,
+    SOLVE_STALL,
     SOLVE_TOLERANCE,
+    STALL_GAIN,
 )
 
 # what an active set gave (``_active_set``)
@@ -237,6 +239,8 @@ def _sweeps(F, vel, rows, pairs, count, starts, sizes, blocks, speed, most, lemk
             rows[c, LAMBDA_T] = min(max(rows[c, LAMBDA_T], -limit), limit)
             _push(rows, vel, pairs, c, 0.0, rows[c, LAMBDA_T])
     warm = rows[:count, LAMBDA_N:LAMBDA_T + 1].copy()  # the last step's answer, as started
+    best = math.inf
+    best_at = 0
     for sweep in range(most):
         change = 0.0
         for q in range(blocks):
@@ -251,9 +255,18 @@ def _sweeps(F, vel, rows, pairs, count, starts, sizes, blocks, speed, most, lemk
                 change = max(change, _friction(vel, rows, pairs, c))
                 change = max(change, _normal(vel, rows, pairs, c))
             change = max(change, _into_cone(vel, rows, pairs, c, sizes[b]))
-        if change == 0.0 or _residual(vel, rows, pairs, count, starts, sizes, blocks) <= SOLVE_TOLERANCE * speed:
+        residual = _residual(vel, rows, pairs, count, starts, sizes, blocks) if change != 0.0 else 0.0
+        if residual <= SOLVE_TOLERANCE * speed:
             return sweep + 1
         if sweep == EXACT_AFTER - 1 and _exact(F, vel, rows, pairs, count, starts, sizes, blocks, speed, warm, lemke_limit):
+            return sweep + 1
+        # On a pile too big for the exact finish, sweeps with friction stall short of the
+        # tolerance (the worst point's error wanders instead of falling): once SOLVE_STALL
+        # sweeps in a row have not brought it below STALL_GAIN of its lowest, more buy nothing.
+        if residual < STALL_GAIN * best:
+            best = residual
+            best_at = sweep
+        elif sweep - best_at >= SOLVE_STALL:
             return sweep + 1
     return most
 

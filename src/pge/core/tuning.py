@@ -68,6 +68,10 @@ IMPACT_ITERATIONS = 16
 #: the solve stops early once no contact's speed is off by more than this times h |a| (the
 #: speed gravity gives in one step)
 SOLVE_TOLERANCE = 1e-6
+#: ... and gives up once SOLVE_STALL sweeps in a row have not brought its worst error below
+#: STALL_GAIN times its lowest so far (stalled: friction's sweeps on a pile wander)
+SOLVE_STALL = 64
+STALL_GAIN = 0.5
 #: after this many sweeps that did not converge, the solve finishes exactly (on the sweeps'
 #: active set, else by Lemke's method): sweeps are cheap but converge slowly on piles, and
 #: four are enough to find the active set at most steps
