@@ -40,7 +40,9 @@ def borrowed(typingctx, state):
 
     def codegen(context, builder, signature, args):
         (value,) = args
-        items = [_dropped_owner(context, builder, kind, builder.extract_value(value, k)) for k, kind in enumerate(state)]
+        items = [
+            _dropped_owner(context, builder, kind, builder.extract_value(value, k)) for k, kind in enumerate(state)
+        ]
         return context.make_tuple(builder, state, items)
 
     return state(state), codegen
@@ -48,9 +50,10 @@ def borrowed(typingctx, state):
 
 @intrinsic
 def borrowed_array(typingctx, array):
-    """``array`` with its owner record dropped: for an array that a caller keeps alive (an
-    argument of the compiled function that borrows it, or a local of a caller passed down)
-    until the code that uses the borrowed copy returns, and that nothing stores or returns.
+    """``array`` with its owner record dropped: only for an argument of the compiled function
+    that borrows it (its caller keeps it alive until that function returns), never for a
+    local (Numba may release a local after its last use, before the borrowed copy's), and
+    only where nothing stores or returns the copy.
     The contact solve's sweeps pass their arrays through small inlined helpers thousands of
     times a step, and each pass counted references (two atomic instructions) where the
     arithmetic around them is a few additions."""
