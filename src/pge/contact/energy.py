@@ -332,7 +332,7 @@ def _lift_paid(F, members, now, end, lift, rows, pairs, count, h):
     Each part the step's forces join (``_force_parts``, as the energy stage) pays for its
     lifts from its motion at the step's end beyond the motion it keeps (``_kept_motion``:
     its momentum stays where nothing outside it acts), scaled by the factor that takes the
-    gain out (``_work_out``), or as far as that motion holds (``_least_energy``; what is
+    gain out (``_paid_factor``), or as far as that motion holds (``_least_energy``; what is
     left is a still part lifted out of a depth its sinking lost before). Returns whether any
     part paid: its points then open a little less over the step, and the step finds its
     arcs and its push-out again."""
@@ -373,13 +373,31 @@ def _lift_paid(F, members, now, end, lift, rows, pairs, count, h):
     for r in range(m):
         if owed[r] == 0.0:
             continue
-        kept = relative[r] - along[r] - owed[r]
-        if kept >= 0.0:
-            factor[r] = _work_out(relative[r], along[r], kept)
-        else:
-            factor[r] = _least_energy(relative[r], along[r])
+        factor[r] = _paid_factor(relative[r], along[r], relative[r] - along[r] - owed[r])
     _scale_beyond(end, rigid, labels, factor)
     return True
+
+
+@njit(cache=True, inline="always")
+def _paid_factor(relative, along, kept):
+    """The factor on a part's motion beyond the motion it keeps that pays its lift's debt
+    with the least change: the largest ``s`` in [0, 1] at which its energy at the step's end,
+    ``relative s^2 - along s`` (plus what does not depend on ``s``), is at most ``kept``
+    (``relative - along`` less the debt, so that ``s = 1`` owes it), the larger root of
+    ``relative s^2 - along s - kept``; where no factor pays it all, the one of least energy
+    (``_least_energy``). ``kept`` may be negative where the bodies' own accelerations work
+    on that motion (``along > 0``): a debt of rounding then still moves ``s`` by rounding,
+    not to the parabola's vertex."""
+    if relative > 0.0:
+        disc = along * along + 4.0 * relative * kept
+        if disc >= 0.0:
+            root = math.sqrt(disc)
+            # the larger root in the form that does not cancel, and the smaller one
+            larger = (along + root) / (2.0 * relative) if along >= 0.0 else 2.0 * kept / (root - along)
+            smaller = (along - root) / (2.0 * relative)
+            if larger >= 0.0 and smaller <= 1.0:
+                return min(larger, 1.0)
+    return _least_energy(relative, along)
 
 
 @njit(cache=True)
