@@ -1354,6 +1354,9 @@ def test_a_lift_s_debt_of_rounding_changes_the_paying_motion_by_rounding():
     assert KE._paid_factor(relative, along, -1.0) == pytest.approx(0.5 * along / relative, rel=1e-15)
     # without the accelerations' work, the same root as before (kept >= 0)
     assert KE._paid_factor(2.0, 0.0, 0.5) == pytest.approx(0.5, rel=1e-15)
+    # the energy stage's factor is the same root; where none exists it leaves the part (1)
+    assert KE._work_out(relative, along, relative - along - debt) == factor
+    assert KE._work_out(relative, along, -1.0) == 1.0
 
 
 @settings(max_examples=300, deadline=None)
@@ -1364,8 +1367,9 @@ def test_a_lift_s_debt_of_rounding_changes_the_paying_motion_by_rounding():
 )
 def test_a_lift_s_debt_is_paid_by_the_largest_factor_that_pays_it(relative, along, debt):
     """The factor is in [0, 1]; where some factor there pays the whole debt, it is the
-    largest that does (energy within rounding of the allowed, and any larger factor owes);
-    else it is the factor of least energy."""
+    largest that does (energy within rounding of the allowed, and any larger factor owes),
+    and the energy stage's factor for the same work is the same; else it is the factor of
+    least energy, and the energy stage leaves the part as it is."""
     from pge.contact import energy as KE
 
     kept = relative - along - debt
@@ -1377,10 +1381,13 @@ def test_a_lift_s_debt_is_paid_by_the_largest_factor_that_pays_it(relative, alon
 
     rounding = 1e-12 * (relative + abs(along) + debt)
     least = KE._least_energy(relative, along)
+    work_out = KE._work_out(relative, along, kept)
     if energy(least) <= kept - rounding:
         assert energy(factor) <= kept + rounding
         step = 1e-6
         if factor + step <= 1.0:
             assert energy(factor + step) > kept - rounding
+        assert work_out == factor  # the energy stage takes the same factor
     elif energy(least) > kept + rounding:
         assert factor == least
+        assert work_out == 1.0  # no factor can: the energy stage leaves the part (the float)
