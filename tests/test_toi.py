@@ -459,6 +459,37 @@ def test_circle_polygon_touching_to_rounding_and_separating_too_slowly_recloses_
     assert circle_polygon(0.0, inside, 0.0, 1.0, 0.0, 0.0, 0.25, rows, 0, 4, 1.0)[0] == INF
 
 
+@pytest.mark.parametrize("vx", [1.0, 0.3, 0.24])
+def test_a_circle_bouncing_off_an_edge_near_its_end_meets_the_corner_not_the_edge_s_plane(vx):
+    """A circle touching a square's top edge 0.05 from its end and leaving it (up at 1, along
+    towards the end at ``vx``, gravity down) comes back to the edge's plane 2 / 9.81 s later,
+    past the edge's end for the first two: it then meets the corner (0.3) or nothing (1.0),
+    never the plane beyond the edge. The kernel's reclosing of a touching, separating circle
+    took the plane's time without looking where the foot was: in a random scene of
+    ``test_properties.py`` an elastic ball bouncing along a fixed hexagon's face collided
+    with the face's line 1.8 mm past its end, 5.5e-5 short of the corner (found 2026-12-06)."""
+    square = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)]
+    rows = outline_rows(square)
+    radius, horizon, start = 0.25, 1.0, (-0.45, 0.75)  # the top edge runs from x = 0.5 to -0.5
+    v, a = (-vx, 1.0), (0.0, -9.81)
+    t, feature = circle_polygon(*start, *v, *a, radius, rows, 0, 4, horizon)
+    # the reference from just after the start, where the circle is clear of the edge
+    shift = 1e-3
+    moved = tuple(np.asarray(start) + np.asarray(v) * shift + 0.5 * np.asarray(a) * shift**2)
+    speed = tuple(np.asarray(v) + np.asarray(a) * shift)
+
+    def gap(ts):
+        return circle_polygon_gap(ts, moved, speed, a, radius, square)
+
+    t_ref = check_against_reference(t - shift if t != INF else INF, gap, horizon - shift, f"vx={vx}")
+    landing = 2.0 / 9.81
+    if vx * landing > 0.05:  # past the end when it comes down: the corner, or nothing
+        assert t == INF or feature == -(3 + 1)
+        assert (t == INF) == (t_ref == INF)
+    else:
+        assert feature == 2 and t == pytest.approx(landing, rel=1e-12)
+
+
 def test_circle_sliding_off_an_edge_end_within_rounding_is_judged_at_the_corner():
     """A circle touching an edge that it is sliding off at one end, to rounding (5e-17 short of
     the end), flies off if it is fast enough (v_t^2 > a_n R), as past the end: no contact now, and

@@ -103,6 +103,22 @@ def _pressed(px, py, vx, vy, ax, ay, radius, outline, start, n, feature, nx, ny)
     return accel < 0.0
 
 
+@njit(cache=True, inline="always")
+def _on_edge(px, py, vx, vy, ax, ay, outline, row, t):
+    """Whether a circle whose centre meets the offset plane of the edge in ``row`` at ``t``
+    meets the edge there: its foot within the edge (to ``_EXTENT_TOLERANCE`` of its length),
+    and not at an end it is sliding off (the corner's to judge)."""
+    nx = outline[row, 2]
+    ny = outline[row, 3]
+    u = -ny * (px + (vx + 0.5 * ax * t) * t - outline[row, 0]) + nx * (py + (vy + 0.5 * ay * t) * t - outline[row, 1])
+    length = outline[row, 4]
+    tolerance = _EXTENT_TOLERANCE * length
+    vt = -ny * (vx + ax * t) + nx * (vy + ay * t)
+    if (u >= length - tolerance and vt > 0.0) or (u <= tolerance and vt < 0.0):
+        return False
+    return -tolerance <= u <= length + tolerance
+
+
 @njit(cache=True)
 def _reclosing(px, py, vx, vy, ax, ay, radius, outline, start, feature, horizon):
     """When a circle touching ``feature`` (to rounding) and separating from it touches it again.
@@ -165,7 +181,10 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
             # A circle sliding off the end of an edge is judged against the corner there.
             feature = _sliding_off(px, py, vx, vy, outline, start, n, feature)
             reclose = _reclosing(px, py, vx, vy, ax, ay, radius, outline, start, feature, horizon)
-            if 0.0 < reclose < _INF:
+            # An edge's reclosing is on its plane: where the circle has slid past the edge's
+            # end by then, the corner there is what it meets (the loop over corners below).
+            if 0.0 < reclose < _INF and (feature < 0 or _on_edge(px, py, vx, vy, ax, ay, outline, start + feature,
+                                                                  reclose)):
                 best_t = reclose
                 best_feature = feature
                 found = True
@@ -183,15 +202,7 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
         if s0 > 0.0 and s1 >= 0.0 and s2 >= 0.0:
             continue
         t = first_descent_quadratic(s0, s1, s2, best_t, False)
-        if t == _INF:
-            continue
-        u = -ny * (px + (vx + hax * t) * t - x0) + nx * (py + (vy + hay * t) * t - y0)
-        length = outline[row, 4]
-        tolerance = _EXTENT_TOLERANCE * length
-        vt = -ny * (vx + ax * t) + nx * (vy + ay * t)
-        if (u >= length - tolerance and vt > 0.0) or (u <= tolerance and vt < 0.0):
-            continue  # meeting the plane at an end it is sliding off: the corner's to judge
-        if -tolerance <= u <= length + tolerance:
+        if t != _INF and _on_edge(px, py, vx, vy, ax, ay, outline, row, t):
             best_t = t
             best_feature = k
             found = True
