@@ -1391,3 +1391,32 @@ def test_a_lift_s_debt_is_paid_by_the_largest_factor_that_pays_it(relative, alon
     elif energy(least) > kept + rounding:
         assert factor == least
         assert work_out == 1.0  # no factor can: the energy stage leaves the part (the float)
+
+
+@pytest.mark.parametrize("speed, keeps", [(0.3, False), (-0.3, True)])
+def test_a_part_on_ice_keeps_no_momentum_into_a_wall_it_touches(speed, keeps):
+    """What a part keeps when it pays a lift's debt (``_kept_motion``): on a frictionless
+    floor, its momentum along the floor, unless that translation runs into another fixed
+    body one of its points touches within the step. A box resting on ice against a wall on
+    its right, moving right, keeps nothing (scaled towards zero, it stays off the wall);
+    moving left, away from the wall, it keeps its momentum."""
+    from pge.contact import rows as KR, energy as KE
+    from pge.contact.manifold import NX, NY, SEPARATION
+
+    h = ISLAND_STEP
+    F = _energy_stage_bodies([1.0], [0.01], np.array([[0.0, -G]]))
+    rows = np.zeros((2, KR.NSOLVE))
+    rows[0, NY] = 1.0  # the floor, pressing without friction
+    rows[0, KR.LAMBDA_N] = G * h
+    rows[1, NX] = -1.0  # the wall on the right, touching, not pressing
+    rows[1, SEPARATION] = 0.0
+    pairs = np.array([[0, -1, 0, 1], [0, -1, 0, 2]], dtype=np.int64)
+    velocities = np.array([[speed, 0.0, 0.0]])
+    labels, grounded = KE._force_parts(rows, pairs, 2, 1)
+    rigid = KE._kept_motion(F, np.array([0]), velocities, labels, grounded, rows, pairs, 2, h)
+    assert rigid[0, 0] == (speed if keeps else 0.0)
+    assert rigid[0, 1] == 0.0 and rigid[0, 2] == 0.0
+    # a wall further off than the step's travel does not block it
+    rows[1, SEPARATION] = 2.0 * abs(speed) * h
+    rigid = KE._kept_motion(F, np.array([0]), velocities, labels, grounded, rows, pairs, 2, h)
+    assert rigid[0, 0] == speed

@@ -21,6 +21,7 @@ from pge._jit_cache import njit
 from pge.contact.manifold import (
     NX,
     NY,
+    SEPARATION,
 )
 from pge.contact.rows import (
     LAMBDA_N,
@@ -280,11 +281,13 @@ def _least_energy(relative, along):
 
 
 @njit(cache=True)
-def _kept_motion(F, members, velocities, labels, grounded, rows, pairs, count):
+def _kept_motion(F, members, velocities, labels, grounded, rows, pairs, count, h):
     """Each body's velocity and spin in the motion its part keeps whatever its bodies do to
     each other: the part's rigid motion (``_rigid_motion``) where no force joins it to a fixed
     body; where forces do, only its momentum along a fixed face that presses it without
-    friction (every such press frictionless, their normals parallel), as a translation; else
+    friction (every such press frictionless, their normals parallel), as a translation, unless
+    that translation would reach another fixed body a point of the part touches within the
+    step ``h`` (a box resting on ice against a wall keeps no momentum into the wall); else
     none."""
     m = members.shape[0]
     rigid = _rigid_motion(F, members, velocities, labels, grounded)
@@ -313,6 +316,16 @@ def _kept_motion(F, members, velocities, labels, grounded, rows, pairs, count):
             mass = 1.0 / F[members[k], L.INV_MASS]
             total[r] += mass
             along[r] += mass * (velocities[k, 0] * tx[r] + velocities[k, 1] * ty[r])
+    for c in range(count):
+        if pairs[c, 1] >= 0:
+            continue
+        r = labels[pairs[c, 0]]
+        if r < 0 or not (free[r] and seen[r]):
+            continue
+        across = tx[r] * rows[c, NX] + ty[r] * rows[c, NY]
+        closing = along[r] / total[r] * across
+        if abs(across) > PARALLEL and closing < 0.0 and rows[c, SEPARATION] + h * closing < 0.0:
+            free[r] = False
     for k in range(m):
         r = labels[k]
         if r >= 0 and free[r] and seen[r]:
@@ -358,7 +371,7 @@ def _lift_paid(F, members, now, end, lift, rows, pairs, count, h):
             owed[r] = 0.0
     if not paying:
         return False
-    rigid = _kept_motion(F, members, end, labels, grounded, rows, pairs, count)
+    rigid = _kept_motion(F, members, end, labels, grounded, rows, pairs, count, h)
     relative = np.zeros(m)
     along = np.zeros(m)
     for k in range(m):
