@@ -495,9 +495,7 @@ def _largest_paying(relative, along, kept):
     ``relative s^2 - along s - kept``, in the form that does not cancel, or 1 where ``s = 1``
     already is; -1 where no ``s`` in [0, 1] is. ``kept`` may be negative where the bodies'
     own accelerations work on that motion (``along > 0``, gravity on a falling body): the
-    parabola then dips below zero, and a root may still lie in [0, 1] (read as none until
-    2026-12-06: a lift's debt of rounding, 1.3e-13 J in corpus scene 183, scaled a part to
-    the parabola's vertex, 0.834, and sent a resting box at 2.9 mm/s into a fixed ramp)."""
+    parabola then dips below zero, and a root may still lie in [0, 1]."""
     if relative <= 0.0:
         return 1.0 if -along <= kept else -1.0
     disc = along * along + 4.0 * relative * kept

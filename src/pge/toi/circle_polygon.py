@@ -183,8 +183,8 @@ def circle_polygon(px, py, vx, vy, ax, ay, radius, outline, start, n, horizon, s
             reclose = _reclosing(px, py, vx, vy, ax, ay, radius, outline, start, feature, horizon)
             # An edge's reclosing is on its plane: where the circle has slid past the edge's
             # end by then, the corner there is what it meets (the loop over corners below).
-            if 0.0 < reclose < _INF and (feature < 0 or _on_edge(px, py, vx, vy, ax, ay, outline, start + feature,
-                                                                  reclose)):
+            meets = feature < 0 or _on_edge(px, py, vx, vy, ax, ay, outline, start + feature, reclose)
+            if 0.0 < reclose < _INF and meets:
                 best_t = reclose
                 best_feature = feature
                 found = True
