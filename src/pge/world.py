@@ -431,6 +431,7 @@ class World:
         state.I[i, L.COUNT] += 1
         state.I[i, L.ALIVE] = 0
         grid.unlink(state.S, i)
+        queue.drop_horizon(state.S, i)
         body = self._handles.pop(i)
         body.world = None
         self._body_callbacks.pop(i, None)

@@ -25,7 +25,7 @@ from pge.core.impulse import contact_impulse, patch_impulse
 from pge.core.motion import advance, orient
 from pge.core.predict import new_mark, place, predict
 from pge.core.prefetch import prefetch_row
-from pge.core.queue import pop_earliest
+from pge.core.queue import next_is_horizon, pop_earliest
 from pge.core.response import apply_impulse, combine, contact_response
 from pge.core.tuning import CONTACT_MARGIN, FACE_DIP, FACE_HYSTERESIS, SIMULTANEOUS, STORM_SPAN, STORM_TICKS, TOUCHING
 from pge.toi.circle_circle import circle_circle_contact
@@ -442,22 +442,28 @@ def _report(out, t, a, b, code):
 
 
 @njit(cache=True, inline="always")
-def ask_ahead(S):
-    """Start loading what the next event will read first: its slot and its bodies' rows
-    (named by the earliest entry's key; ``pge.core.prefetch``)."""
+def ask_ahead(S, horizon):
+    """Start loading what the next event may read first (``pge.core.prefetch``): the
+    earliest slot's data and its bodies' rows (named by its key), and, with ``horizon``
+    (the current event is not the horizons' first, so that one stays a candidate), the
+    rows of the body whose horizon is first."""
     F = S.F
     I = S.I
-    key = S.heap_entry[0, 0]
-    prefetch_row(S.slot_data, S.heap_entry[0, 1])
-    kind = key >> L.KIND_SHIFT
-    if kind == L.COLLISION or kind == L.HORIZON_EVENT:
-        last = key & _ID_MASK  # the body of a horizon; the larger of a collision's two
-        prefetch_row(I, last)
-        prefetch_row(F, last)
-        if kind == L.COLLISION:
-            first = (key >> L.ID_SHIFT) & _ID_MASK
-            prefetch_row(I, first)
-            prefetch_row(F, first)
+    if S.Q[L.HEAP_N] > 0:
+        key = S.heap_entry[0, 0]
+        prefetch_row(S.slot_data, S.heap_entry[0, 1])
+        kind = key >> L.KIND_SHIFT
+        if kind == L.COLLISION or kind == L.HORIZON_EVENT:
+            last = key & _ID_MASK  # the body of a horizon; the larger of a collision's two
+            prefetch_row(I, last)
+            prefetch_row(F, last)
+            if kind == L.COLLISION:
+                first = (key >> L.ID_SHIFT) & _ID_MASK
+                prefetch_row(I, first)
+                prefetch_row(F, first)
+    if horizon and S.Q[L.HORIZON_N] > 0:
+        prefetch_row(I, S.horizon_body[0])
+        prefetch_row(F, S.horizon_body[0])
 
 
 @njit(cache=True)
@@ -496,23 +502,33 @@ def run(S, until, notify_all, polygons):
         pending = Q[L.PENDING_DONE] < Q[L.PENDING_N]
         if (pending and not drain_predictions(S, polygons)) or Q[L.FREE_N] < Q[L.MIN_FREE]:
             return L.NEED_SPACE
-        if Q[L.HEAP_N] == 0:
+        if Q[L.HEAP_N] == 0 and Q[L.HORIZON_N] == 0:
             return L.EMPTY
-        if heap_time[0] > until:
-            return L.DONE
-        slot, t, key = pop_earliest(S)
-        if Q[L.HEAP_N] > 0:
-            ask_ahead(S)
-        kind = key >> L.KIND_SHIFT
-        a = slot_data[slot, 0]
-        b = slot_data[slot, 1]
-        count_a = slot_data[slot, 2]
-        count_b = slot_data[slot, 3]
-        feature = slot_data[slot, 4]
-        if kind == L.COLLISION or kind == L.HORIZON_EVENT:
-            if I[a, L.COUNT] != count_a or (kind == L.COLLISION and I[b, L.COUNT] != count_b):
-                stats[L.S_STALE] += 1
-                continue
+        if next_is_horizon(S):
+            # The horizon stays first in its heap until ``touch`` moves it to the next one.
+            t = S.horizon_time[0]
+            if t > until:
+                return L.DONE
+            kind = L.HORIZON_EVENT
+            a = S.horizon_body[0]
+            b = -1
+            feature = 0
+            ask_ahead(S, False)
+        else:
+            if heap_time[0] > until:
+                return L.DONE
+            slot, t, key = pop_earliest(S)
+            ask_ahead(S, True)
+            kind = key >> L.KIND_SHIFT
+            a = slot_data[slot, 0]
+            b = slot_data[slot, 1]
+            count_a = slot_data[slot, 2]
+            count_b = slot_data[slot, 3]
+            feature = slot_data[slot, 4]
+            if kind == L.COLLISION or kind == L.HORIZON_EVENT:
+                if I[a, L.COUNT] != count_a or (kind == L.COLLISION and I[b, L.COUNT] != count_b):
+                    stats[L.S_STALE] += 1
+                    continue
         P[L.TIME] = t
         if watch(S, t, kind):
             if kind != L.COLLISION:

@@ -70,6 +70,7 @@ FRICTION_RULE = 8  # how two friction coefficients combine (codes as RULE)
 PENDING_N = 9  # bodies waiting in `pending` to be predicted
 PENDING_DONE = 10  # how many of them are done
 PENDING_MARK = 11  # pair-once mark of the current batch
+HORIZON_N = 12  # entries in the horizons' heap (pge.core.queue)
 STORM_RUN = 13  # events in the current run of close events (the progress watch), kept across returns
 STORM_CAP = 14  # events a run may hold before it is a storm (set by Python from the number of bodies)
 FAST_BODY = 15  # a body whose travel step the clock cannot resolve (-1: none), found by `place`

@@ -20,7 +20,7 @@ from pge.core import layout as L
 from pge.core.grid import file_in_cell, gather, gather_all
 from pge.core.motion import kernel_angle, orient, spin_at, state_at
 from pge.core.overlap import overlap_depth
-from pge.core.queue import push
+from pge.core.queue import push, set_horizon
 from pge.core.tuning import MIN_TICKS
 from pge.numerics.vector import magnitude
 from pge.toi.circle_circle import circle_circle
@@ -121,8 +121,7 @@ def place(S, i):
     F[i, L.HORIZON] = horizon
     if I[i, L.FIXED] == 0:
         file_in_cell(S, i)
-    if horizon != _INF:
-        push(S, horizon, (L.HORIZON_EVENT << L.KIND_SHIFT) | i, i, -1, I[i, L.COUNT], 0, 0)
+    set_horizon(S, i, horizon)
 
 
 #: approach speeds below this many units in the last place of the velocities are rounding

@@ -1,4 +1,5 @@
-"""The event queue: a four-ary heap of event slots with lazy invalidation.
+"""The event queue: a four-ary heap of event slots with lazy invalidation, and the bodies'
+horizons in a heap of their own, moved in place.
 
 A slot holds an event's five ints of data (``slot_data``); the heap holds slot
 numbers ordered by ``(time, key, slot)``, and keeps each entry's time
@@ -13,13 +14,26 @@ about as many entries) spends its time waiting on memory, and four children
 halve the levels a sift passes while their times share one cache line
 (``heap_time`` is laid out for it, ``pge.core.state``). The order is total, so
 the entries pop in the same order whatever the heap's shape.
+
+The horizons (``pge.core.predict``: when a moving body's swept box runs out) are not slots:
+each moving body has one entry in a second four-ary heap (``horizon_time``,
+``horizon_body``, the body's place in it ``horizon_at``), which a new horizon moves in
+place. Lazily, every collision would leave both bodies' old horizons behind as stale
+entries, about one stale pop an event in a gas; in place there are none, and the horizons'
+heap holds one entry per moving body. Its order is the queue's for horizon entries
+(``(time, key)``, the key the body's id under the kind's bits), and the loop takes the
+earlier of the two heaps' first entries (``next_is_horizon``).
 """
 
 from __future__ import annotations
 
+import math
+
 from pge._jit_cache import njit
 
 from pge.core import layout as L
+
+_INF = math.inf
 
 #: children of a heap node: node ``i``'s are ``ARITY i + 1`` to ``ARITY i + ARITY``
 ARITY = 4
@@ -114,3 +128,115 @@ def pop_earliest(S):
     free[Q[L.FREE_N]] = top
     Q[L.FREE_N] += 1
     return top, top_time, top_key
+
+
+# ------------------------------------------------------------------ the horizons
+
+
+@njit(cache=True, inline="always")
+def _horizon_before(t1, i1, t2, i2):
+    """Whether body ``i1``'s horizon at ``t1`` comes before body ``i2``'s at ``t2``."""
+    return t1 < t2 or (t1 == t2 and i1 < i2)
+
+
+@njit(cache=True, inline="always")
+def _horizon_up(S, k, t, i):
+    """Put body ``i``'s horizon ``t`` at heap position ``k`` or above it."""
+    times = S.horizon_time
+    bodies = S.horizon_body
+    at = S.horizon_at
+    while k > 0:
+        parent = (k - 1) // ARITY
+        if _horizon_before(times[parent], bodies[parent], t, i):
+            break
+        times[k] = times[parent]
+        bodies[k] = bodies[parent]
+        at[bodies[k]] = k
+        k = parent
+    times[k] = t
+    bodies[k] = i
+    at[i] = k
+
+
+@njit(cache=True, inline="always")
+def _horizon_down(S, k, t, i, n):
+    """Put body ``i``'s horizon ``t`` at heap position ``k`` or below it (``n`` entries)."""
+    times = S.horizon_time
+    bodies = S.horizon_body
+    at = S.horizon_at
+    while True:
+        first = ARITY * k + 1
+        if first >= n:
+            break
+        child = first
+        child_time = times[first]
+        child_body = bodies[first]
+        for c in range(first + 1, min(first + ARITY, n)):
+            if _horizon_before(times[c], bodies[c], child_time, child_body):
+                child = c
+                child_time = times[c]
+                child_body = bodies[c]
+        if _horizon_before(t, i, child_time, child_body):
+            break
+        times[k] = child_time
+        bodies[k] = child_body
+        at[child_body] = k
+        k = child
+    times[k] = t
+    bodies[k] = i
+    at[i] = k
+
+
+@njit(cache=True, inline="always")
+def drop_horizon(S, i):
+    """Take body ``i``'s horizon out of the queue (no-op if it has none)."""
+    Q = S.Q
+    at = S.horizon_at
+    k = at[i]
+    if k < 0:
+        return
+    at[i] = -1
+    n = Q[L.HORIZON_N] - 1
+    Q[L.HORIZON_N] = n
+    if k == n:
+        return
+    t = S.horizon_time[n]
+    j = S.horizon_body[n]
+    parent = (k - 1) // ARITY
+    if k > 0 and _horizon_before(t, j, S.horizon_time[parent], S.horizon_body[parent]):
+        _horizon_up(S, k, t, j)
+    else:
+        _horizon_down(S, k, t, j, n)
+
+
+@njit(cache=True, inline="always")
+def set_horizon(S, i, t):
+    """Body ``i``'s horizon is ``t`` from now on (inf: none), in place of any it had."""
+    Q = S.Q
+    if t == _INF:
+        drop_horizon(S, i)
+        return
+    k = S.horizon_at[i]
+    if k < 0:
+        k = Q[L.HORIZON_N]
+        Q[L.HORIZON_N] = k + 1
+        _horizon_up(S, k, t, i)
+    elif _horizon_before(t, i, S.horizon_time[k], i):
+        _horizon_up(S, k, t, i)
+    else:
+        _horizon_down(S, k, t, i, Q[L.HORIZON_N])
+
+
+@njit(cache=True, inline="always")
+def next_is_horizon(S):
+    """Whether the earliest event is the horizons' first (else the slots' first, or none)."""
+    Q = S.Q
+    if Q[L.HORIZON_N] == 0:
+        return False
+    if Q[L.HEAP_N] == 0:
+        return True
+    t = S.horizon_time[0]
+    top = S.heap_time[0]
+    if t != top:
+        return t < top
+    return ((L.HORIZON_EVENT << L.KIND_SHIFT) | S.horizon_body[0]) < S.heap_entry[0, 0]

@@ -22,10 +22,12 @@ from pge.core.tuning import STORM_LIMIT, STORM_PER_BODY
 #: ``static_start``, ``static_items``), the event queue (by heap position ``heap_time``, and
 #: ``heap_entry``: key and slot; ``slot_data``, ``free``), the counters of ``World.stats``
 #: (``stats``), the record of the event that returned to Python (``out``), work space
-#: (``scratch``), the bodies waiting to be predicted (``pending``) and the pairs that
-#: overlapped at the start (``excused``).
+#: (``scratch``), the bodies waiting to be predicted (``pending``), the pairs that
+#: overlapped at the start (``excused``) and the moving bodies' horizons (a heap by position,
+#: ``horizon_time`` and ``horizon_body``, and each body's place in it, ``horizon_at``).
 State = namedtuple("State", ["F", "I", "OL", "P", "Q", "head", "static_start", "static_items", "heap_time",
-                             "heap_entry", "slot_data", "free", "stats", "out", "scratch", "pending", "OB", "excused"])
+                             "heap_entry", "slot_data", "free", "stats", "out", "scratch", "pending", "OB", "excused",
+                             "horizon_time", "horizon_body", "horizon_at"])
 
 
 def heap_times(capacity: int) -> np.ndarray:
@@ -69,6 +71,9 @@ class EngineState:
         self.scratch = np.zeros(capacity, dtype=np.int64)
         self.pending = np.zeros(4 * capacity + 16, dtype=np.int64)
         self.excused = np.zeros((4, 2), dtype=np.int64)  # pairs that may overlap until they separate
+        self.horizon_time = heap_times(capacity)
+        self.horizon_body = np.zeros(capacity, dtype=np.int64)
+        self.horizon_at = np.full(capacity, -1, dtype=np.int64)
         self._update_min_free()
         self.refresh()
 
@@ -108,6 +113,13 @@ class EngineState:
             I[self.n :, L.ISLAND] = -1
             I[self.n :, L.LAST_OTHER] = -1
             self.F, self.I = F, I
+            horizon_time = heap_times(capacity)
+            horizon_time[: self.n] = self.horizon_time
+            horizon_body = np.zeros(capacity, dtype=np.int64)
+            horizon_body[: self.n] = self.horizon_body
+            horizon_at = np.full(capacity, -1, dtype=np.int64)
+            horizon_at[: self.n] = self.horizon_at
+            self.horizon_time, self.horizon_body, self.horizon_at = horizon_time, horizon_body, horizon_at
             self.scratch = np.zeros(capacity, dtype=np.int64)
             pending = np.zeros(4 * capacity + 16, dtype=np.int64)
             pending[: self.pending.shape[0]] = self.pending
