@@ -12,7 +12,7 @@ buckets them by offset in the function and prints the hottest buckets with their
         pge.core.grid.gather --objects /tmp/objs
 
 Reading the instructions tells which array load the time waits on (for example
-``mov 0x28(%r9,%rbx,8),%rbx``: column 5 of a row of ``I``, the cell list's NEXT).
+``mov 0x20(%r9,%rbx,8),%rbx``: column 4 of a row of ``I``, the cell list's NEXT).
 """
 
 from __future__ import annotations

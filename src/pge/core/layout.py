@@ -6,45 +6,53 @@ lines). Module-level integers are compile-time constants for Numba.
 """
 
 # ---- F: float64 per body -------------------------------------------------
-X, Y = 0, 1  # reference position (centre or area centroid) at time T0
-VX, VY = 2, 3  # velocity at T0 (zero for a fixed body)
-T0 = 4  # the body's own reference time ("delayed state")
-AX, AY = 5, 6  # total constant acceleration (own + gravity; zero if fixed)
-INV_MASS = 7  # 1 / mass, 0 for fixed bodies
-ELASTICITY = 8
-RADIUS = 9  # circle radius (0 for polygons)
-REACH = 10  # bounding radius about the reference point
-EXT_X0, EXT_Y0, EXT_X1, EXT_Y1 = 11, 12, 13, 14  # shape's box relative to the reference point
-HORIZON = 15  # end of the time span the swept box covers
-BOX_X0, BOX_Y0, BOX_X1, BOX_Y1 = 16, 17, 18, 19  # swept box over [now, HORIZON]
-OWN_AX, OWN_AY = 20, 21  # the body's own acceleration, on top of gravity
-ANGLE, OMEGA = 22, 23
-HELD_VX, HELD_VY = 24, 25  # velocity kept while fixed, restored by unfix
-MASS = 26  # nan until given
-FREE_AX, FREE_AY = 27, 28  # own acceleration + gravity (zero if fixed): what the body feels when free
-FRICTION = 29  # Coulomb friction coefficient
-SPRING_AX, SPRING_AY = 30, 31  # acceleration from springs, held constant between refreshes
-INV_INERTIA = 32  # 1 / moment of inertia about the reference point, 0 for fixed bodies
-ORIENT = 33  # the angle the body's outline rows in OL are turned to
-HELD_OMEGA = 34  # angular velocity kept while fixed, restored by unfix
-ALPHA = 35  # angular acceleration: an island's contact torque over its current step
+# Rows are whole cache lines (NF a multiple of 8, the array aligned: ``pge.core.state``). The
+# first line holds what the broad phase reads of every candidate (most are rejected by their
+# boxes), the second what a prediction reads of a candidate that passed.
+BOX_X0, BOX_Y0, BOX_X1, BOX_Y1 = 0, 1, 2, 3  # swept box over [now, HORIZON]
+HORIZON = 4  # end of the time span the swept box covers
+X, Y = 5, 6  # reference position (centre or area centroid) at time T0
+T0 = 7  # the body's own reference time ("delayed state")
+VX, VY = 8, 9  # velocity at T0 (zero for a fixed body)
+AX, AY = 10, 11  # total constant acceleration (own + gravity; zero if fixed)
+REACH = 12  # bounding radius about the reference point
+RADIUS = 13  # circle radius (0 for polygons)
+OMEGA = 14
+ALPHA = 15  # angular acceleration: an island's contact torque over its current step
+INV_MASS = 16  # 1 / mass, 0 for fixed bodies
+ELASTICITY = 17
+EXT_X0, EXT_Y0, EXT_X1, EXT_Y1 = 18, 19, 20, 21  # shape's box relative to the reference point
+OWN_AX, OWN_AY = 22, 23  # the body's own acceleration, on top of gravity
+ANGLE = 24
+HELD_VX, HELD_VY = 25, 26  # velocity kept while fixed, restored by unfix
+MASS = 27  # nan until given
+FREE_AX, FREE_AY = 28, 29  # own acceleration + gravity (zero if fixed): what the body feels when free
+FRICTION = 30  # Coulomb friction coefficient
+SPRING_AX, SPRING_AY = 31, 32  # acceleration from springs, held constant between refreshes
+INV_INERTIA = 33  # 1 / moment of inertia about the reference point, 0 for fixed bodies
+ORIENT = 34  # the angle the body's outline rows in OL are turned to
+HELD_OMEGA = 35  # angular velocity kept while fixed, restored by unfix
 LAST_HIT = 36  # time of the body's last collision (with I[LAST_OTHER])
-NF = 37
+NF = 40  # 37 used, padded to five cache lines
 
 # ---- I: int64 per body -------------------------------------------------------
+# Rows are two cache lines; the first holds what the broad phase and a prediction read of a
+# candidate.
 KIND = 0  # pge.toi.CIRCLE or POLYGON
 FIXED = 1
 COUNT = 2  # invalidation counter: events carry it and are stale once it moves on
 ALIVE = 3
-CELL = 4  # grid cell of a moving body (-1: not in the grid)
-NEXT, PREV = 5, 6  # neighbours in the cell's linked list
-OUTLINE_START, OUTLINE_N = 7, 8  # polygon rows in the outline array
-NOTIFY = 9  # collisions of this body are reported to Python
-STAMP = 10  # de-duplication stamp used while gathering candidates
-MARK = 11  # pair-once mark used while predicting a group of bodies
-ISLAND = 12  # the island the body belongs to (-1: none), see pge.contact
+NEXT = 4  # the next body in the cell's linked list
+MARK = 5  # pair-once mark used while predicting a group of bodies
+ISLAND = 6  # the island the body belongs to (-1: none), see pge.contact
+OUTLINE_START = 7  # polygon rows in the outline array
+OUTLINE_N = 8
+CELL = 9  # grid cell of a moving body (-1: not in the grid)
+PREV = 10  # the previous body in the cell's linked list
+NOTIFY = 11  # collisions of this body are reported to Python
+STAMP = 12  # de-duplication stamp used while gathering candidates
 LAST_OTHER = 13  # the body of its last collision (-1: none)
-NI = 14
+NI = 16  # 14 used, padded to two cache lines
 
 # ---- P: float64 world parameters --------------------------------------------
 TIME = 0

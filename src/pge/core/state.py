@@ -39,13 +39,22 @@ def heap_times(capacity: int) -> np.ndarray:
     return buffer[skip : skip + capacity]
 
 
+def aligned_rows(capacity: int, columns: int, dtype=np.float64) -> np.ndarray:
+    """Zeroed ``(capacity, columns)`` array whose rows start on 64-byte boundaries (cache lines,
+    for rows of a whole number of lines: ``pge.core.layout``)."""
+    size = np.dtype(dtype).itemsize
+    buffer = np.zeros(capacity * columns + 64 // size, dtype=dtype)
+    skip = (-buffer.ctypes.data % 64) // size
+    return buffer[skip : skip + capacity * columns].reshape(capacity, columns)
+
+
 class EngineState:
     """Arrays for bodies, outlines, the grid and the event queue, with room to grow."""
 
     def __init__(self, capacity: int = 64, event_capacity: int = 1024) -> None:
         self.n = 0  # body rows in use (removed bodies keep their rows)
-        self.F = np.zeros((capacity, L.NF))
-        self.I = np.zeros((capacity, L.NI), dtype=np.int64)
+        self.F = aligned_rows(capacity, L.NF)
+        self.I = aligned_rows(capacity, L.NI, np.int64)
         self.I[:, L.CELL] = -1
         self.I[:, L.ISLAND] = -1
         self.I[:, L.LAST_OTHER] = -1
@@ -105,9 +114,9 @@ class EngineState:
         """Row index for a new body (arrays grow by doubling)."""
         if self.n == self.F.shape[0]:
             capacity = 2 * self.F.shape[0]
-            F = np.zeros((capacity, L.NF))
+            F = aligned_rows(capacity, L.NF)
             F[: self.n] = self.F[: self.n]
-            I = np.zeros((capacity, L.NI), dtype=np.int64)
+            I = aligned_rows(capacity, L.NI, np.int64)
             I[: self.n] = self.I[: self.n]
             I[self.n :, L.CELL] = -1
             I[self.n :, L.ISLAND] = -1
