@@ -13,6 +13,7 @@ from __future__ import annotations
 from pge._jit_cache import njit
 
 from pge.core import layout as L
+from pge.core.prefetch import prefetch_row
 
 
 @njit(cache=True, inline="always")
@@ -98,6 +99,13 @@ def gather(S, i, pad=0.0):
     if iy0 < 0:
         iy0 = 0
     moving = I[i, L.FIXED] == 0
+    # Each cell's list is walked one row after the other; their first rows are asked for
+    # together first, so that the walks start without waiting each in turn.
+    for ix in range(ix0, ix1 + 1):
+        for iy in range(iy0, iy1 + 1):
+            j = head[ix * ny + iy]
+            if j >= 0:
+                prefetch_row(I, j)
     count = 0
     for ix in range(ix0, ix1 + 1):
         for iy in range(iy0, iy1 + 1):
@@ -107,6 +115,8 @@ def gather(S, i, pad=0.0):
                 if j != i:
                     scratch[count] = j
                     count += 1
+                    # its box is read next (``predict``): the load overlaps the list's walk
+                    prefetch_row(F, j)
                 j = I[j, L.NEXT]
             if moving:
                 for k in range(static_start[c], static_start[c + 1]):

@@ -4,7 +4,9 @@ The event loop knows the next event's bodies as soon as it has popped the curren
 one (the queue's new earliest entry names them in its key), and an event's own
 work takes about a microsecond. Among a hundred thousand bodies their rows are
 rarely in cache; asking for them one event ahead lets the loads run while the
-current event is processed instead of stalling the next one.
+current event is processed instead of stalling the next one. The grid does the same
+for a prediction's candidates (``pge.core.grid.gather``): the first row of each cell's
+list before the lists are walked, and each candidate's row as it is found.
 """
 
 from __future__ import annotations
