@@ -55,10 +55,10 @@ def check_horizons(state: EngineState, expected: dict[int, float]) -> None:
     n = int(state.Q[L.HORIZON_N])
     assert n == len(expected)
     times = state.horizon_time[:n]
-    bodies = state.horizon_body[:n]
+    bodies = state.horizon_index[:n, 0]
     assert dict(zip(bodies.tolist(), times.tolist())) == expected
-    for i in range(state.horizon_at.shape[0]):
-        k = int(state.horizon_at[i])
+    for i in range(state.horizon_index.shape[0]):
+        k = int(state.horizon_index[i, 1])
         assert (k >= 0) == (i in expected)
         if k >= 0:
             assert bodies[k] == i

@@ -462,8 +462,8 @@ def ask_ahead(S, horizon):
                 prefetch_row(I, first)
                 prefetch_row(F, first)
     if horizon and S.Q[L.HORIZON_N] > 0:
-        prefetch_row(I, S.horizon_body[0])
-        prefetch_row(F, S.horizon_body[0])
+        prefetch_row(I, S.horizon_index[0, 0])
+        prefetch_row(F, S.horizon_index[0, 0])
 
 
 @njit(cache=True)
@@ -504,31 +504,31 @@ def run(S, until, notify_all, polygons):
             return L.NEED_SPACE
         if Q[L.HEAP_N] == 0 and Q[L.HORIZON_N] == 0:
             return L.EMPTY
-        if next_is_horizon(S):
+        horizon = next_is_horizon(S)
+        if horizon:
             # The horizon stays first in its heap until ``touch`` moves it to the next one.
             t = S.horizon_time[0]
             if t > until:
                 return L.DONE
             kind = L.HORIZON_EVENT
-            a = S.horizon_body[0]
+            a = S.horizon_index[0, 0]
             b = -1
-            feature = 0
-            ask_ahead(S, False)
+            count_a = count_b = feature = 0
         else:
             if heap_time[0] > until:
                 return L.DONE
             slot, t, key = pop_earliest(S)
-            ask_ahead(S, True)
             kind = key >> L.KIND_SHIFT
             a = slot_data[slot, 0]
             b = slot_data[slot, 1]
             count_a = slot_data[slot, 2]
             count_b = slot_data[slot, 3]
             feature = slot_data[slot, 4]
-            if kind == L.COLLISION or kind == L.HORIZON_EVENT:
-                if I[a, L.COUNT] != count_a or (kind == L.COLLISION and I[b, L.COUNT] != count_b):
-                    stats[L.S_STALE] += 1
-                    continue
+        ask_ahead(S, not horizon)
+        if not horizon and (kind == L.COLLISION or kind == L.HORIZON_EVENT):
+            if I[a, L.COUNT] != count_a or (kind == L.COLLISION and I[b, L.COUNT] != count_b):
+                stats[L.S_STALE] += 1
+                continue
         P[L.TIME] = t
         if watch(S, t, kind):
             if kind != L.COLLISION:

@@ -16,9 +16,9 @@ halve the levels a sift passes while their times share one cache line
 the entries pop in the same order whatever the heap's shape.
 
 The horizons (``pge.core.predict``: when a moving body's swept box runs out) are not slots:
-each moving body has one entry in a second four-ary heap (``horizon_time``,
-``horizon_body``, the body's place in it ``horizon_at``), which a new horizon moves in
-place. Lazily, every collision would leave both bodies' old horizons behind as stale
+each moving body has one entry in a second four-ary heap (by position: ``horizon_time``,
+and the body in ``horizon_index[k, 0]``; by body: its position, ``horizon_index[i, 1]``),
+which a new horizon moves in place. Lazily, every collision would leave both bodies' old horizons behind as stale
 entries, about one stale pop an event in a gas; in place there are none, and the horizons'
 heap holds one entry per moving body. Its order is the queue's for horizon entries
 (``(time, key)``, the key the body's id under the kind's bits), and the loop takes the
@@ -139,74 +139,61 @@ def _horizon_before(t1, i1, t2, i2):
     return t1 < t2 or (t1 == t2 and i1 < i2)
 
 
-@njit(cache=True, inline="always")
-def _horizon_up(S, k, t, i):
-    """Put body ``i``'s horizon ``t`` at heap position ``k`` or above it."""
-    times = S.horizon_time
-    bodies = S.horizon_body
-    at = S.horizon_at
-    while k > 0:
-        parent = (k - 1) // ARITY
-        if _horizon_before(times[parent], bodies[parent], t, i):
-            break
-        times[k] = times[parent]
-        bodies[k] = bodies[parent]
-        at[bodies[k]] = k
-        k = parent
-    times[k] = t
-    bodies[k] = i
-    at[i] = k
+@njit(cache=True)
+def _horizon_move(times, index, k, t, i, n):
+    """Put body ``i``'s horizon ``t`` in the heap of ``n`` entries, starting from position
+    ``k``: up while it comes before its parent, else down while a child comes before it.
 
-
-@njit(cache=True, inline="always")
-def _horizon_down(S, k, t, i, n):
-    """Put body ``i``'s horizon ``t`` at heap position ``k`` or below it (``n`` entries)."""
-    times = S.horizon_time
-    bodies = S.horizon_body
-    at = S.horizon_at
-    while True:
-        first = ARITY * k + 1
-        if first >= n:
-            break
-        child = first
-        child_time = times[first]
-        child_body = bodies[first]
-        for c in range(first + 1, min(first + ARITY, n)):
-            if _horizon_before(times[c], bodies[c], child_time, child_body):
-                child = c
-                child_time = times[c]
-                child_body = bodies[c]
-        if _horizon_before(t, i, child_time, child_body):
-            break
-        times[k] = child_time
-        bodies[k] = child_body
-        at[child_body] = k
-        k = child
+    Called, not inlined, with the two arrays it needs: every inlined copy of ``place``
+    (with ``set_horizon`` inside) would type and compile its own, seconds each on a cold
+    start, and a call passing two arrays costs a few nanoseconds."""
+    if k > 0 and _horizon_before(t, i, times[(k - 1) // ARITY], index[(k - 1) // ARITY, 0]):
+        while k > 0:
+            parent = (k - 1) // ARITY
+            if _horizon_before(times[parent], index[parent, 0], t, i):
+                break
+            times[k] = times[parent]
+            index[k, 0] = index[parent, 0]
+            index[index[k, 0], 1] = k
+            k = parent
+    else:
+        while True:
+            first = ARITY * k + 1
+            if first >= n:
+                break
+            child = first
+            child_time = times[first]
+            child_body = index[first, 0]
+            for c in range(first + 1, min(first + ARITY, n)):
+                if _horizon_before(times[c], index[c, 0], child_time, child_body):
+                    child = c
+                    child_time = times[c]
+                    child_body = index[c, 0]
+            if _horizon_before(t, i, child_time, child_body):
+                break
+            times[k] = child_time
+            index[k, 0] = child_body
+            index[child_body, 1] = k
+            k = child
     times[k] = t
-    bodies[k] = i
-    at[i] = k
+    index[k, 0] = i
+    index[i, 1] = k
 
 
 @njit(cache=True, inline="always")
 def drop_horizon(S, i):
     """Take body ``i``'s horizon out of the queue (no-op if it has none)."""
     Q = S.Q
-    at = S.horizon_at
-    k = at[i]
+    index = S.horizon_index
+    k = index[i, 1]
     if k < 0:
         return
-    at[i] = -1
+    index[i, 1] = -1
     n = Q[L.HORIZON_N] - 1
     Q[L.HORIZON_N] = n
     if k == n:
         return
-    t = S.horizon_time[n]
-    j = S.horizon_body[n]
-    parent = (k - 1) // ARITY
-    if k > 0 and _horizon_before(t, j, S.horizon_time[parent], S.horizon_body[parent]):
-        _horizon_up(S, k, t, j)
-    else:
-        _horizon_down(S, k, t, j, n)
+    _horizon_move(S.horizon_time, index, k, S.horizon_time[n], index[n, 0], n)
 
 
 @njit(cache=True, inline="always")
@@ -216,15 +203,12 @@ def set_horizon(S, i, t):
     if t == _INF:
         drop_horizon(S, i)
         return
-    k = S.horizon_at[i]
+    index = S.horizon_index
+    k = index[i, 1]
     if k < 0:
         k = Q[L.HORIZON_N]
         Q[L.HORIZON_N] = k + 1
-        _horizon_up(S, k, t, i)
-    elif _horizon_before(t, i, S.horizon_time[k], i):
-        _horizon_up(S, k, t, i)
-    else:
-        _horizon_down(S, k, t, i, Q[L.HORIZON_N])
+    _horizon_move(S.horizon_time, index, k, t, i, Q[L.HORIZON_N])
 
 
 @njit(cache=True, inline="always")
@@ -239,4 +223,4 @@ def next_is_horizon(S):
     top = S.heap_time[0]
     if t != top:
         return t < top
-    return ((L.HORIZON_EVENT << L.KIND_SHIFT) | S.horizon_body[0]) < S.heap_entry[0, 0]
+    return ((L.HORIZON_EVENT << L.KIND_SHIFT) | S.horizon_index[0, 0]) < S.heap_entry[0, 0]

@@ -23,11 +23,12 @@ from pge.core.tuning import STORM_LIMIT, STORM_PER_BODY
 #: ``heap_entry``: key and slot; ``slot_data``, ``free``), the counters of ``World.stats``
 #: (``stats``), the record of the event that returned to Python (``out``), work space
 #: (``scratch``), the bodies waiting to be predicted (``pending``), the pairs that
-#: overlapped at the start (``excused``) and the moving bodies' horizons (a heap by position,
-#: ``horizon_time`` and ``horizon_body``, and each body's place in it, ``horizon_at``).
+#: overlapped at the start (``excused``) and the moving bodies' horizons (a heap:
+#: ``horizon_time`` by position; ``horizon_index``, the body at a position in column 0 and a
+#: body's position in column 1).
 State = namedtuple("State", ["F", "I", "OL", "P", "Q", "head", "static_start", "static_items", "heap_time",
                              "heap_entry", "slot_data", "free", "stats", "out", "scratch", "pending", "OB", "excused",
-                             "horizon_time", "horizon_body", "horizon_at"])
+                             "horizon_time", "horizon_index"])
 
 
 def heap_times(capacity: int) -> np.ndarray:
@@ -46,6 +47,14 @@ def aligned_rows(capacity: int, columns: int, dtype=np.float64) -> np.ndarray:
     buffer = np.zeros(capacity * columns + 64 // size, dtype=dtype)
     skip = (-buffer.ctypes.data % 64) // size
     return buffer[skip : skip + capacity * columns].reshape(capacity, columns)
+
+
+def horizon_index(capacity: int) -> np.ndarray:
+    """The horizons' heap index (``pge.core.queue``): column 0 the body at each position,
+    column 1 each body's position (-1: none)."""
+    index = np.zeros((capacity, 2), dtype=np.int64)
+    index[:, 1] = -1
+    return index
 
 
 class EngineState:
@@ -81,8 +90,7 @@ class EngineState:
         self.pending = np.zeros(4 * capacity + 16, dtype=np.int64)
         self.excused = np.zeros((4, 2), dtype=np.int64)  # pairs that may overlap until they separate
         self.horizon_time = heap_times(capacity)
-        self.horizon_body = np.zeros(capacity, dtype=np.int64)
-        self.horizon_at = np.full(capacity, -1, dtype=np.int64)
+        self.horizon_index = horizon_index(capacity)
         self._update_min_free()
         self.refresh()
 
@@ -124,11 +132,9 @@ class EngineState:
             self.F, self.I = F, I
             horizon_time = heap_times(capacity)
             horizon_time[: self.n] = self.horizon_time
-            horizon_body = np.zeros(capacity, dtype=np.int64)
-            horizon_body[: self.n] = self.horizon_body
-            horizon_at = np.full(capacity, -1, dtype=np.int64)
-            horizon_at[: self.n] = self.horizon_at
-            self.horizon_time, self.horizon_body, self.horizon_at = horizon_time, horizon_body, horizon_at
+            index = horizon_index(capacity)
+            index[: self.n] = self.horizon_index
+            self.horizon_time, self.horizon_index = horizon_time, index
             self.scratch = np.zeros(capacity, dtype=np.int64)
             pending = np.zeros(4 * capacity + 16, dtype=np.int64)
             pending[: self.pending.shape[0]] = self.pending
