@@ -18,11 +18,11 @@ the entries pop in the same order whatever the heap's shape.
 The horizons (``pge.core.predict``: when a moving body's swept box runs out) are not slots:
 each moving body has one entry in a second four-ary heap (by position: ``horizon_time``,
 and the body in ``horizon_index[k, 0]``; by body: its position, ``horizon_index[i, 1]``),
-which a new horizon moves in place. Lazily, every collision would leave both bodies' old horizons behind as stale
-entries, about one stale pop an event in a gas; in place there are none, and the horizons'
-heap holds one entry per moving body. Its order is the queue's for horizon entries
-(``(time, key)``, the key the body's id under the kind's bits), and the loop takes the
-earlier of the two heaps' first entries (``next_is_horizon``).
+which a new horizon moves in place. Lazily, every collision would leave both bodies' old
+horizons behind as stale entries, about one stale pop an event in a gas; in place there
+are none, and the horizons' heap holds one entry per moving body. Its order is the queue's
+for horizon entries (``(time, key)``, the key the body's id under the kind's bits), and the
+loop takes the earlier of the two heaps' first entries (``next_is_horizon``).
 """
 
 from __future__ import annotations
