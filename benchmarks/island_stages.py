@@ -89,13 +89,15 @@ def timed_step_island(clock):
         sweeps += timed("forces (solve)", KS._solve, F, end, rows, pairs, count, speed, down_x, down_y,
                         K.ISLAND_ITERATIONS, K.LCP_LIMIT)
         timed("energy", KE._no_gain, F, members, now, end, rows, pairs, count, h)
-        timed("arcs (end and inside)", KA._solved_arcs, S, now, end, rows, pairs, count, h)
-        lift, pushes = timed("push-out", KP._push_out, F, now, end, rows, pairs, count, h, natural, down_x, down_y)
+        ends = np.empty((count, 5))
+        timed("arcs (end and inside)", KA._solved_arcs, S, now, end, rows, pairs, count, h, ends)
+        lift, pushes = timed("push-out", KP._push_out, F, now, end, rows, pairs, count, h, natural, down_x, down_y,
+                             ends)
         sweeps += pushes
         if timed("lift paid", KE._lift_paid, F, members, now, end, lift, rows, pairs, count, h):
-            timed("arcs (end and inside)", KA._solved_arcs, S, now, end, rows, pairs, count, h)
+            timed("arcs (end and inside)", KA._solved_arcs, S, now, end, rows, pairs, count, h, ends)
             lift, pushes = timed("push-out", KP._push_out, F, now, end, rows, pairs, count, h, natural, down_x,
-                                 down_y)
+                                 down_y, ends)
             sweeps += pushes
         labels, fastest, deepest = timed("finish (touch)", K._finish, S, members, local, now, end, lift, rows,
                                          pairs, count, h, speed)

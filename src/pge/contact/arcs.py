@@ -28,6 +28,7 @@ from pge.contact.manifold import (
 from pge.contact.rows import (
     APPROACH,
     ARC,
+    ASKED,
     CIRCLE,
     CLOSABLE,
     _lever_arms,
@@ -38,9 +39,15 @@ from pge.contact.rows import (
 )
 from pge.core import layout as L
 from pge.core.tuning import (
+    END_TURN,
     FEATURE_INSTANTS,
+    INSTANT_REFINEMENTS,
     STEP_INSTANTS,
 )
+
+#: the columns of ``_solved_arcs``'s ``ends``: whether the row's pair turns and its point was
+#: found at the step's end, and that point and its normal there
+END_VALID, END_PX, END_PY, END_NX, END_NY = range(5)
 
 
 @njit(cache=True)
@@ -131,6 +138,18 @@ def _turning_pair(I, velocities, pairs, c):
     wi = velocities[pairs[c, 0], 2]
     wj = velocities[pairs[c, 1], 2] if pairs[c, 1] >= 0 else 0.0
     return (I[pairs[c, 2], L.KIND] != CIRCLE and wi != 0.0) or (I[pairs[c, 3], L.KIND] != CIRCLE and wj != 0.0)
+
+
+@njit(cache=True, inline="always")
+def _turning_rate(I, velocities, pairs, c):
+    """The faster spin in ``velocities`` of row ``c``'s polygons (a circle's spin does not
+    move its outline)."""
+    rate = 0.0
+    if I[pairs[c, 2], L.KIND] != CIRCLE:
+        rate = abs(velocities[pairs[c, 0], 2])
+    if pairs[c, 1] >= 0 and I[pairs[c, 3], L.KIND] != CIRCLE:
+        rate = max(rate, abs(velocities[pairs[c, 1], 2]))
+    return rate
 
 
 @njit(cache=True)
@@ -247,9 +266,61 @@ def _closable_at(rows, r, out, found, s, h, floor):
 
 
 @njit(cache=True)
-def _solved_arcs(S, now, end, rows, pairs, count, h):
+def _most_asked(S, now, end, rows, pairs, c, r, h, u0, line, floor, below, above, outline, scratch):
+    """The most that row ``r``'s gap asks of the lift (``_instant_ask``) at an instant
+    between the fractions ``below`` and ``above`` of the step (the sampled instants either
+    side of the one that asked most), by ``INSTANT_REFINEMENTS`` golden-section steps on the
+    solved motion; returns it and the outline scratch. A gap's dip is flat near its deepest
+    while the lift's displacement, ``l h (f - f^2 / 2)``, still rises, so the most asked lies
+    between the instants: a polygon sliding past a fixed corner at 0.5 m/s, held at a
+    quarter, half and three quarters of the step, dipped 3.4e-8 at 0.41 of it (corpus scene
+    97)."""
+    golden = 0.5 * (math.sqrt(5.0) - 1.0)
+    a = below
+    b = above
+    x1 = b - golden * (b - a)
+    x2 = a + golden * (b - a)
+    f1, outline = _ask_at(S, now, end, rows, pairs, c, r, h, u0, line, floor, x1, outline, scratch)
+    f2, outline = _ask_at(S, now, end, rows, pairs, c, r, h, u0, line, floor, x2, outline, scratch)
+    most = max(f1, f2)
+    for _ in range(INSTANT_REFINEMENTS - 2):
+        if f1 > f2:
+            b = x2
+            x2 = x1
+            f2 = f1
+            x1 = b - golden * (b - a)
+            f1, outline = _ask_at(S, now, end, rows, pairs, c, r, h, u0, line, floor, x1, outline, scratch)
+            most = max(most, f1)
+        else:
+            a = x1
+            x1 = x2
+            f1 = f2
+            x2 = a + golden * (b - a)
+            f2, outline = _ask_at(S, now, end, rows, pairs, c, r, h, u0, line, floor, x2, outline, scratch)
+            most = max(most, f2)
+    return most, outline
+
+
+@njit(cache=True)
+def _ask_at(S, now, end, rows, pairs, c, r, h, u0, line, floor, f, outline, scratch):
+    """``_instant_ask`` of row ``r`` at the fraction ``f`` of the step, its pair's manifold
+    found there on the solved motion (the pose under constant acceleration: moved on at the
+    velocity ``now`` plus half of what the step adds by then); returns it and the outline
+    scratch."""
+    if not 0.0 < f < 1.0:
+        return 0.0, outline
+    found, outline = _moved(S.F, S.I, S.OL, S.OB, now + (end - now) * (0.5 * f), pairs, c, f * h, outline, scratch)
+    return _instant_ask(rows, r, scratch, found, f * h, h, u0, line, floor), outline
+
+
+@njit(cache=True)
+def _solved_arcs(S, now, end, rows, pairs, count, h, ends):
     """Each point's ``ARC`` found again on the step's solved motion, so that the push-out
-    holds its gap at the step's end and inside it.
+    holds its gap at the step's end and inside it; each turning pair's point at the end in
+    ``ends`` (``END_VALID`` 1, its point and normal there, where a polygon of the pair turns
+    by more than ``END_TURN`` over the step and the point's features stay; 0 for the others:
+    a point whose features changed is held by the pair's deepest, which may be
+    the other row's too).
 
     At the end: a turning pair's manifold found with the outlines moved on by ``h`` at the
     mean of the velocities and spins ``now`` and at the step's ``end`` (the closed-form pose
@@ -272,16 +343,21 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
     The push-out's lift, a speed taken back over the step, has moved a point by
     ``lift (s - s^2 / 2h)`` at ``s``, three quarters of its end displacement at mid-step, so
     a deficit ``D`` at ``s`` asks ``D h / (2 s - s^2 / h)`` of it at the end, and the arc
-    asks for the largest of these. A gap that closes and opens again within the step (a
+    asks for the largest of these, found between the instants either side of the one that
+    asked most (``_most_asked``). A gap that closes and opens again within the step (a
     circle sliding at 0.7 m/s on a polygon that turns under it at 130 rad/s^2, corpus scene
-    15: 7.4e-6 at mid-step) is held at these instants; between them it may dip by what its
-    curve does there."""
+    15: 7.4e-6 at mid-step) is so held where it asks most. Where the push-out holds the
+    point at the end in a row of its own (``ends``), what the instants ask is the row's
+    own, ``ASKED`` (a lift speed at its point, which is nearer the instants' poses than the
+    end's); else it is in ``ARC``."""
     F = S.F
     I = S.I
     OL = S.OL
     OB = S.OB
     for r in range(count):
         rows[r, CLOSABLE] = -math.inf
+        rows[r, ASKED] = 0.0
+        ends[r, END_VALID] = 0.0
     mean = 0.5 * (now + end)
     # the poses at the instants inside, under constant acceleration: moved on for s at the
     # speed of now plus half of what the step adds by then
@@ -293,6 +369,7 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
     inside = np.empty((len(STEP_INSTANTS), 4, NCOLUMNS))
     found = np.zeros(len(STEP_INSTANTS), dtype=np.int64)
     fine = np.empty((FEATURE_INSTANTS - 1, 4, NCOLUMNS))
+    scratch = np.empty((4, NCOLUMNS))
     fine_found = np.zeros(FEATURE_INSTANTS - 1, dtype=np.int64)
     c = 0
     while c < count:
@@ -301,6 +378,7 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
             c = d
             continue  # the straight lines are the motion
         at_full, outline = _moved(F, I, OL, OB, mean, pairs, c, h, outline, full)
+        turn = h * _turning_rate(I, mean, pairs, c)
         changed = False  # a point of the pair changes features within the step
         for k in range(len(STEP_INSTANTS)):
             found[k], outline = _moved(F, I, OL, OB, moving[k], pairs, c, STEP_INSTANTS[k] * h, outline, inside[k])
@@ -322,19 +400,63 @@ def _solved_arcs(S, now, end, rows, pairs, count, h):
             e = _deepest(full, at_full, rows[r, KEY])
             if e >= 0:
                 rows[r, ARC] = min(full[e, SEPARATION] - line, 0.0)
+            if e >= 0 and full[e, KEY] == rows[r, KEY] and turn > END_TURN:
+                ends[r, END_VALID] = 1.0
+                ends[r, END_PX] = full[e, PX]
+                ends[r, END_PY] = full[e, PY]
+                ends[r, END_NX] = full[e, NX]
+                ends[r, END_NY] = full[e, NY]
             floor = min(rows[r, SEPARATION], 0.0)
             asked = 0.0  # the end displacement the instants inside ask of the lift
+            at = 0.0  # where (a fraction of the step) and between which sampled instants
+            below = 0.0
+            above = 1.0
             closable = -math.inf
             for k in range(len(STEP_INSTANTS)):
                 s = STEP_INSTANTS[k] * h
-                asked = max(asked, _instant_ask(rows, r, inside[k], found[k], s, h, u0, line, floor))
+                ask = _instant_ask(rows, r, inside[k], found[k], s, h, u0, line, floor)
+                if ask > asked:
+                    asked = ask
+                    at = STEP_INSTANTS[k]
+                    below = STEP_INSTANTS[k - 1] if k > 0 else 0.0
+                    above = STEP_INSTANTS[k + 1] if k + 1 < len(STEP_INSTANTS) else 1.0
                 closable = max(closable, _closable_at(rows, r, inside[k], found[k], s, h, floor))
             if changed:
                 for k in range(FEATURE_INSTANTS - 1):
-                    s = (k + 1.0) / FEATURE_INSTANTS * h
-                    asked = max(asked, _instant_ask(rows, r, fine[k], fine_found[k], s, h, u0, line, floor))
-                    closable = max(closable, _closable_at(rows, r, fine[k], fine_found[k], s, h, floor))
+                    f = (k + 1.0) / FEATURE_INSTANTS
+                    ask = _instant_ask(rows, r, fine[k], fine_found[k], f * h, h, u0, line, floor)
+                    if ask > asked:
+                        asked = ask
+                        at = f
+                        below = f - 1.0 / FEATURE_INSTANTS
+                        above = f + 1.0 / FEATURE_INSTANTS
+                    closable = max(closable, _closable_at(rows, r, fine[k], fine_found[k], f * h, h, floor))
             rows[r, CLOSABLE] = min(closable, 0.0)
             if asked > 0.0:
-                rows[r, ARC] = min(rows[r, ARC], -asked - line)
+                most, outline = _most_asked(S, now, end, rows, pairs, c, r, h, u0, line, floor, below, above,
+                                            outline, scratch)
+                asked = max(asked, most)
+                if ends[r, END_VALID] != 0.0:
+                    rows[r, ASKED] = 2.0 * asked / h  # the row's own: the end has a row of its own
+                else:
+                    rows[r, ARC] = min(rows[r, ARC], -asked - line)
         c = d
+
+
+@njit(cache=True, inline="always")
+def _end_arms(F, now, end, pairs, p, h, px, py):
+    """The lever arms of the point ``(px, py)`` at the step's end, for the bodies of row
+    ``p`` of ``pairs``, from their centres where the solved motion brings them (moved on at
+    the mean of the velocities ``now`` and at the ``end``)."""
+    ka = pairs[p, 0]
+    kb = pairs[p, 1]
+    i = pairs[p, 2]
+    j = pairs[p, 3]
+    rax = px - (F[i, L.X] + 0.5 * h * (now[ka, 0] + end[ka, 0]))
+    ray = py - (F[i, L.Y] + 0.5 * h * (now[ka, 1] + end[ka, 1]))
+    rbx = px - F[j, L.X]
+    rby = py - F[j, L.Y]
+    if kb >= 0:
+        rbx -= 0.5 * h * (now[kb, 0] + end[kb, 0])
+        rby -= 0.5 * h * (now[kb, 1] + end[kb, 1])
+    return rax, ray, rbx, rby

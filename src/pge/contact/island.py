@@ -669,13 +669,14 @@ def step_island(S, members, local, h, t, warm_keys, warm_impulses):
     _end_targets(rows, now, pairs, count)
     sweeps += _solve(F, end, rows, pairs, count, speed, down_x, down_y, ISLAND_ITERATIONS, LCP_LIMIT)
     _no_gain(F, members, now, end, rows, pairs, count, h)
-    _solved_arcs(S, now, end, rows, pairs, count, h)
-    lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y)
+    ends = np.empty((count, 5))
+    _solved_arcs(S, now, end, rows, pairs, count, h, ends)
+    lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y, ends)
     sweeps += pushes
     if _lift_paid(F, members, now, end, lift, rows, pairs, count, h):
         # The paid motion opens its points a little less: its arcs and the push-out again.
-        _solved_arcs(S, now, end, rows, pairs, count, h)
-        lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y)
+        _solved_arcs(S, now, end, rows, pairs, count, h, ends)
+        lift, pushes = _push_out(F, now, end, rows, pairs, count, h, natural, down_x, down_y, ends)
         sweeps += pushes
     labels, fastest, deepest = _finish(S, members, local, now, end, lift, rows, pairs, count, h, speed)
     S.stats[L.S_ISLAND_STEPS] += 1

@@ -47,7 +47,11 @@ APPROACH = NCOLUMNS + 23
 # straight line is the motion) so that its gap on the step's solved motion stays above its
 # floor at the step's instants (``_solved_arcs``; the straight line's own: ``_lift_floor``)
 CLOSABLE = NCOLUMNS + 24
-NSOLVE = NCOLUMNS + 25
+# ... and the least lift speed at its point that its gaps inside the step ask for, where the
+# push-out holds a turning pair's point at the step's end in a row of its own (0 where they
+# ask for none; ``_solved_arcs``)
+ASKED = NCOLUMNS + 25
+NSOLVE = NCOLUMNS + 26
 
 
 @njit(cache=True)

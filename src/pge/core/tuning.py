@@ -95,10 +95,21 @@ PUSH_RATE = 0.8
 #: the instants inside a step, as fractions of it, where the push-out holds each point's gap
 #: on the step's solved motion as well as at its end (pge.contact.arcs._solved_arcs)
 STEP_INSTANTS = (0.25, 0.5, 0.75)
+#: ... and where a gap there asks the lift for more, the instant between them where it asks
+#: most, found by this many golden-section steps around the instant that asked most
+#: (pge.contact.arcs._most_asked: a gap's dip is flat near its deepest while the lift's
+#: displacement still rises, so between three instants a gap held at them dipped by a sixth
+#: of its deficit)
+INSTANT_REFINEMENTS = 8
 #: ... and at this many evenly spaced instants where a point of the pair changes features
 #: within the step (a circle passing a turning polygon's corner: its gap has a kink there,
 #: and between three instants it dipped by up to 4.5e-7)
 FEATURE_INSTANTS = 16
+#: a turning pair's point is held by the push-out at its pose at the step's end as well
+#: (pge.contact.pushout._with_ends) where a polygon of the pair turns by more than this
+#: (radians) over the step: below it the two poses' normals and lever arms move a lift's
+#: point apart by less than a millionth of the lift's own displacement
+END_TURN = 1e-6
 #: ... where some point overlaps by more than this times its pair's smaller bounding radius
 #: (overlaps of rounding's size are only kept from growing)
 PUSH_SLOP = 1e-10
