@@ -135,9 +135,7 @@ def _to_midstep(F, now, rows, pairs, r, point, h):
 def _turning_pair(I, velocities, pairs, c):
     """Whether a polygon of row ``c``'s pair turns at the spins in ``velocities`` (a
     circle's spin does not move its outline)."""
-    wi = velocities[pairs[c, 0], 2]
-    wj = velocities[pairs[c, 1], 2] if pairs[c, 1] >= 0 else 0.0
-    return (I[pairs[c, 2], L.KIND] != CIRCLE and wi != 0.0) or (I[pairs[c, 3], L.KIND] != CIRCLE and wj != 0.0)
+    return _turning_rate(I, velocities, pairs, c) > 0.0
 
 
 @njit(cache=True, inline="always")
